@@ -1,0 +1,98 @@
+// vraster: the scanline rasterizer (edges -> active edge list -> coverage spans).
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "vraster/flatten.hpp"
+#include "vraster/geometry.hpp"
+
+namespace vraster {
+
+/// Which points of the plane a path fills. Most are predicates on the winding number w of a point
+/// (w counts +1 for every crossing of a downward edge to the left of the point, -1 for upward ones).
+enum class FillRule : std::uint8_t {
+  EvenOdd,      ///< w is odd
+  NonZero,      ///< w != 0
+  NonExterior,  ///< the point cannot reach infinity without crossing the path (not a function of w)
+  Positive,     ///< w > 0 (GLU's positive winding class)
+  Negative,     ///< w < 0
+  AbsGeq2,      ///< |w| >= 2
+};
+
+/// How coverage is computed for a pixel.
+enum class AntiAlias : std::uint8_t {
+  None,      ///< one sample at the pixel centre, top-left rule; coverage is 0 or 1
+  Analytic,  ///< area of the pixel under the path by cell cover/area accumulation (exact unless edges cross
+             ///< inside a pixel)
+};
+
+/// Parses "evenodd", "nonzero", ... ; returns false for an unknown name.
+bool parse_fill_rule(std::string_view name, FillRule& out);
+std::string_view to_string(FillRule rule);
+bool parse_anti_alias(std::string_view name, AntiAlias& out);
+std::string_view to_string(AntiAlias aa);
+
+/// The one interface between the rasterizer and whoever turns coverage into pixels.
+/// Calls come in increasing y; within a row in increasing, non-overlapping x. Coverage is in (0, 1].
+/// Pixels not mentioned have coverage 0.
+class CoverageSink {
+ public:
+  virtual ~CoverageSink() = default;
+  /// Pixels [x0, x1) of row y all have coverage `coverage`.
+  virtual void span(int y, int x0, int x1, float coverage) = 0;
+  /// Pixels [x0, x1) of row y have coverage coverage[0 .. x1-x0) (entries may be 0).
+  virtual void row(int y, int x0, int x1, const float* coverage) = 0;
+};
+
+/// A device-space line segment, stored top to bottom (y0 < y1), with the direction of the original segment.
+struct Edge {
+  double x0, y0, x1, y1;
+  double dxdy;  ///< (x1 - x0) / (y1 - y0)
+  int winding;  ///< +1 when the original segment ran downward (increasing y), -1 when upward
+
+  /// x where the edge crosses height y (clamped to the edge's x range so round-off never overshoots).
+  double x_at(double y) const {
+    const double x = x0 + (y - y0) * dxdy;
+    const double lo = x0 < x1 ? x0 : x1, hi = x0 < x1 ? x1 : x0;
+    return x < lo ? lo : (x > hi ? hi : x);
+  }
+};
+
+/// Scan converts flattened contours. Keeps its buffers between calls, so one Rasterizer per thread,
+/// reused across paths and frames, allocates nothing in steady state.
+class Rasterizer {
+ public:
+  /// Rasterizes every contour of `lines` (closed implicitly) into the pixels [0, width) x [0, height),
+  /// handing coverage to `sink`. Geometry outside that rectangle costs almost nothing: edges are clipped to it
+  /// (parts left of it become vertical edges at x = 0 so they keep their winding).
+  void fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
+
+  /// The clipped edges of the last fill() (for tests and tools).
+  const std::vector<Edge>& edges() const { return edges_; }
+
+ private:
+  void build_edges(const Polylines& lines, int width, int height);
+  void sweep_aliased(FillRule rule, int width, CoverageSink& sink);
+  void sweep_analytic(FillRule rule, int width, CoverageSink& sink);
+  void bucket_edges(bool by_sample_row);
+  void add_edge(Point top, Point bottom, int winding);
+  void add_clipped_segment(Point p, Point q, int width, int height);
+
+  std::vector<Edge> edges_;
+  int y_min_ = 0, y_max_ = 0;               // rows touched by edges_, [y_min_, y_max_)
+  std::vector<std::uint32_t> bucket_start_;  // edge table: edges starting in row r are order_[bucket_start_[r-y_min_] ..]
+  std::vector<std::uint32_t> order_;
+  std::vector<std::uint32_t> active_;        // the active edge list (indices into edges_)
+  struct Crossing {
+    double x;
+    std::uint32_t edge;
+  };
+  std::vector<Crossing> crossings_;          // aliased sweep: active edges with their x at the sample row
+  std::vector<double> accumulation_;         // analytic sweep: one row of signed area deltas, width + 2 cells
+  std::vector<std::uint64_t> touched_;       // analytic sweep: one bit per cell written in the current row
+  std::vector<float> row_coverage_;          // coverage handed to the sink
+};
+
+}  // namespace vraster

@@ -1,0 +1,11 @@
+// vraster: everything in one include.
+#pragma once
+
+#include "vraster/error.hpp"
+#include "vraster/flatten.hpp"
+#include "vraster/geometry.hpp"
+#include "vraster/image.hpp"
+#include "vraster/paint.hpp"
+#include "vraster/path.hpp"
+#include "vraster/png.hpp"
+#include "vraster/raster.hpp"

@@ -1,0 +1,200 @@
+// vraster: command-line front end.
+//
+//   vraster render IN.svg -o OUT.png [options]   SVG subset -> PNG
+//   vraster demo [-o FILE]                        an embedded scene -> PNG
+//
+// Errors: a message naming the problem on stderr, exit status 2, and no output file.
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/cli.hpp"
+#include "svg_subset/svg.hpp"
+#include "vraster/vraster.hpp"
+
+namespace vraster::cli {
+namespace {
+
+constexpr const char* kUsage =
+    "usage:\n"
+    "  vraster render IN.svg -o OUT.png [--aa none|analytic] [--rule RULE] [--tolerance T]\n"
+    "                 [--depth 8|16] [--background COLOR|transparent] [--bench N]\n"
+    "  vraster demo [-o FILE]\n"
+    "RULE: evenodd | nonzero | positive | negative | abs-geq-2 (overrides the file's fill-rule)\n";
+
+struct RenderArgs {
+  std::string input;
+  std::string output;
+  svg::RenderSettings settings;
+  int depth = 8;
+  Color background = Color::transparent();
+  int bench_frames = 0;
+};
+
+double parse_number(std::string_view flag, std::string_view text) {
+  double v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) {
+    throw UsageError{std::string(flag) + ": '" + std::string(text) + "' is not a number"};
+  }
+  return v;
+}
+
+class ArgReader {
+ public:
+  ArgReader(int argc, char** argv, int first) : args_(argv + first, argv + argc) {}
+  bool done() const { return i_ >= args_.size(); }
+  std::string_view next() { return args_[i_++]; }
+  std::string_view value(std::string_view flag) {
+    if (done()) throw UsageError{std::string(flag) + " needs a value"};
+    return next();
+  }
+
+ private:
+  std::vector<std::string_view> args_;
+  std::size_t i_ = 0;
+};
+
+RenderArgs parse_render_args(int argc, char** argv) {
+  RenderArgs a;
+  ArgReader r(argc, argv, 2);
+  while (!r.done()) {
+    const std::string_view arg = r.next();
+    if (arg == "-o" || arg == "--output") {
+      a.output = r.value(arg);
+    } else if (arg == "--aa") {
+      const auto v = r.value(arg);
+      if (!parse_anti_alias(v, a.settings.aa)) throw UsageError{"--aa: unknown mode '" + std::string(v) + "'"};
+    } else if (arg == "--rule") {
+      const auto v = r.value(arg);
+      FillRule rule;
+      if (!parse_fill_rule(v, rule)) throw UsageError{"--rule: unknown fill rule '" + std::string(v) + "'"};
+      a.settings.rule_override = rule;
+    } else if (arg == "--tolerance") {
+      a.settings.tolerance = parse_number(arg, r.value(arg));
+      if (!(a.settings.tolerance >= 1e-4 && a.settings.tolerance <= 100)) {
+        throw UsageError{"--tolerance must be between 0.0001 and 100 pixels"};
+      }
+    } else if (arg == "--depth") {
+      const double d = parse_number(arg, r.value(arg));
+      if (d != 8 && d != 16) throw UsageError{"--depth must be 8 or 16"};
+      a.depth = static_cast<int>(d);
+    } else if (arg == "--background") {
+      const auto v = r.value(arg);
+      if (v == "transparent") {
+        a.background = Color::transparent();
+      } else {
+        bool none = false;
+        const auto c = svg::parse_color(v, none);
+        if (!c) throw UsageError{"--background: '" + std::string(v) + "' is not a colour"};
+        a.background = *c;
+      }
+    } else if (arg == "--bench") {
+      const double n = parse_number(arg, r.value(arg));
+      if (!(n >= 1 && n <= 1e6) || n != std::floor(n)) throw UsageError{"--bench needs a frame count from 1 to 1000000"};
+      a.bench_frames = static_cast<int>(n);
+    } else if (!arg.empty() && arg[0] == '-') {
+      throw UsageError{"unknown option '" + std::string(arg) + "'"};
+    } else if (a.input.empty()) {
+      a.input = arg;
+    } else {
+      throw UsageError{"more than one input file given"};
+    }
+  }
+  if (a.input.empty()) throw UsageError{"render: no input file"};
+  if (a.output.empty() && a.bench_frames == 0) throw UsageError{"render: no output file (-o OUT.png)"};
+  return a;
+}
+
+template <class T>
+void render_document(const svg::Document& doc, const RenderArgs& a) {
+  BasicImage<T> image(doc.width, doc.height);
+  Renderer renderer;
+  auto frame = [&] {
+    image.clear(a.background);
+    svg::render(doc, image, a.settings, renderer);
+  };
+  if (a.bench_frames > 0) {
+    frame();  // warm-up: buffers reach their steady-state size
+    std::vector<double> ms;
+    ms.reserve(static_cast<std::size_t>(a.bench_frames));
+    for (int i = 0; i < a.bench_frames; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      frame();
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::vector<double> sorted = ms;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = sorted.size() % 2 ? sorted[sorted.size() / 2]
+                                            : 0.5 * (sorted[sorted.size() / 2 - 1] + sorted[sorted.size() / 2]);
+    std::printf("frames=%d ms_per_frame_median=%.3f ms_min=%.3f\n", a.bench_frames, median, sorted.front());
+  } else {
+    frame();
+  }
+  if (!a.output.empty()) write_png(a.output, image);
+}
+
+int run_render(int argc, char** argv) {
+  const RenderArgs a = parse_render_args(argc, argv);
+  const svg::Document doc = svg::load_svg(a.input);
+  for (const std::string& w : doc.warnings) std::cerr << a.input << ":" << w << "\n";
+  if (a.depth == 16) {
+    render_document<std::uint16_t>(doc, a);
+  } else {
+    render_document<std::uint8_t>(doc, a);
+  }
+  return 0;
+}
+
+int run_demo(int argc, char** argv) {
+  std::string output = "vraster-demo.png";
+  ArgReader r(argc, argv, 2);
+  while (!r.done()) {
+    const std::string_view arg = r.next();
+    if (arg == "-o" || arg == "--output") {
+      output = r.value(arg);
+    } else {
+      throw UsageError{"demo: unknown argument '" + std::string(arg) + "'"};
+    }
+  }
+  const svg::Document doc = svg::parse_svg(demo_svg(), "<demo>");
+  Image image(doc.width, doc.height);
+  image.clear(Color{1, 1, 1, 1});
+  Renderer renderer;
+  svg::render(doc, image, svg::RenderSettings{}, renderer);
+  write_png(output, image);
+  std::cout << "vraster demo: wrote " << output << " (" << doc.width << "x" << doc.height << ")\n";
+  return 0;
+}
+
+}  // namespace
+}  // namespace vraster::cli
+
+int main(int argc, char** argv) {
+  using namespace vraster;
+  try {
+    if (argc < 2) throw cli::UsageError{"no command given"};
+    const std::string_view command = argv[1];
+    if (command == "render") return cli::run_render(argc, argv);
+    if (command == "demo") return cli::run_demo(argc, argv);
+    if (command == "--help" || command == "-h" || command == "help") {
+      std::cout << cli::kUsage;
+      return 0;
+    }
+    throw cli::UsageError{"unknown command '" + std::string(command) + "'"};
+  } catch (const cli::UsageError& e) {
+    std::cerr << "vraster: " << e.message << "\n" << cli::kUsage;
+    return 2;
+  } catch (const Error& e) {
+    std::cerr << "vraster: " << e.what() << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "vraster: out of memory\n";
+    return 2;
+  }
+}

@@ -1,0 +1,351 @@
+// Path construction: every coordinate is checked once here, so later stages can trust the path.
+#include "vraster/path.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "vraster/error.hpp"
+
+namespace vraster {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Arcs are split into cubics of at most 30 degrees: the radial error of such a cubic is below 4e-7 of the radius.
+constexpr double kMaxArcStep = kPi / 6;
+
+void check_finite(Point p, const char* what) {
+  if (!is_finite(p)) {
+    throw Error(std::string("path: non-finite coordinate in ") + what);
+  }
+}
+
+void check_finite(double v, const char* what) {
+  if (!std::isfinite(v)) {
+    throw Error(std::string("path: non-finite value in ") + what);
+  }
+}
+
+// Angle from vector u to vector v, in (-pi, pi].
+double vector_angle(Point u, Point v) { return std::atan2(cross(u, v), dot(u, v)); }
+
+// Parameters t in (0, 1) where the derivative of a 1-D quadratic or cubic Bezier is zero.
+int quad_extrema(double a, double b, double c, double* t) {
+  const double den = a - 2 * b + c;
+  if (den == 0) return 0;
+  const double s = (a - b) / den;
+  if (s > 0 && s < 1) {
+    t[0] = s;
+    return 1;
+  }
+  return 0;
+}
+
+int cubic_extrema(double a, double b, double c, double d, double* t) {
+  // B'(t)/3 = (b-a)(1-t)^2 + 2(c-b)(1-t)t + (d-c)t^2 = A t^2 + B t + C.
+  const double qa = -a + 3 * b - 3 * c + d;
+  const double qb = 2 * (a - 2 * b + c);
+  const double qc = b - a;
+  int n = 0;
+  auto keep = [&](double s) {
+    if (s > 0 && s < 1) t[n++] = s;
+  };
+  if (std::abs(qa) < 1e-12 * (std::abs(qb) + std::abs(qc)) || qa == 0) {
+    if (qb != 0) keep(-qc / qb);
+    return n;
+  }
+  const double disc = qb * qb - 4 * qa * qc;
+  if (disc < 0) return 0;
+  const double sq = std::sqrt(disc);
+  // Numerically stable roots of a quadratic.
+  const double q = -0.5 * (qb + std::copysign(sq, qb));
+  if (q != 0) {
+    keep(q / qa);
+    keep(qc / q);
+  } else {
+    keep(0);
+  }
+  return n;
+}
+
+Point eval_quad(Point p0, Point p1, Point p2, double t) {
+  const double u = 1 - t;
+  return p0 * (u * u) + p1 * (2 * u * t) + p2 * (t * t);
+}
+
+Point eval_cubic(Point p0, Point p1, Point p2, Point p3, double t) {
+  const double u = 1 - t;
+  return p0 * (u * u * u) + p1 * (3 * u * u * t) + p2 * (3 * u * t * t) + p3 * (t * t * t);
+}
+
+}  // namespace
+
+void Path::ensure_contour() {
+  if (!contour_open_) {
+    verbs_.push_back(Verb::Move);
+    points_.push_back(current_);
+    contour_start_ = current_;
+    contour_open_ = true;
+  }
+}
+
+Path& Path::move_to(Point p) {
+  check_finite(p, "move_to");
+  // A move right after a move replaces it: an empty contour draws nothing.
+  if (contour_open_ && !verbs_.empty() && verbs_.back() == Verb::Move) {
+    points_.back() = p;
+  } else {
+    verbs_.push_back(Verb::Move);
+    points_.push_back(p);
+  }
+  current_ = contour_start_ = p;
+  contour_open_ = true;
+  return *this;
+}
+
+Path& Path::line_to(Point p) {
+  check_finite(p, "line_to");
+  ensure_contour();
+  verbs_.push_back(Verb::Line);
+  points_.push_back(p);
+  current_ = p;
+  return *this;
+}
+
+Path& Path::quad_to(Point control, Point p) {
+  check_finite(control, "quad_to");
+  check_finite(p, "quad_to");
+  ensure_contour();
+  verbs_.push_back(Verb::Quad);
+  points_.push_back(control);
+  points_.push_back(p);
+  current_ = p;
+  return *this;
+}
+
+Path& Path::cubic_to(Point control1, Point control2, Point p) {
+  check_finite(control1, "cubic_to");
+  check_finite(control2, "cubic_to");
+  check_finite(p, "cubic_to");
+  ensure_contour();
+  verbs_.push_back(Verb::Cubic);
+  points_.push_back(control1);
+  points_.push_back(control2);
+  points_.push_back(p);
+  current_ = p;
+  return *this;
+}
+
+Path& Path::close() {
+  if (contour_open_) {
+    verbs_.push_back(Verb::Close);
+    current_ = contour_start_;
+    contour_open_ = false;
+  }
+  return *this;
+}
+
+// Appends cubics approximating the ellipse arc from angle theta1 over dtheta (radians; the ellipse is centred at
+// `center` with radii rx, ry and its x axis rotated by phi radians).
+void Path::arc_segments(Point center, double rx, double ry, double phi, double theta1, double dtheta) {
+  const int n = std::max(1, static_cast<int>(std::ceil(std::abs(dtheta) / kMaxArcStep - 1e-9)));
+  const double step = dtheta / n;
+  const double k = 4.0 / 3.0 * std::tan(step / 4);
+  const double cs = std::cos(phi), sn = std::sin(phi);
+  auto point_at = [&](double t) {
+    const double x = rx * std::cos(t), y = ry * std::sin(t);
+    return Point{center.x + cs * x - sn * y, center.y + sn * x + cs * y};
+  };
+  auto tangent_at = [&](double t) {
+    const double x = -rx * std::sin(t), y = ry * std::cos(t);
+    return Point{cs * x - sn * y, sn * x + cs * y};
+  };
+  double t = theta1;
+  Point from = current_;
+  for (int i = 0; i < n; ++i) {
+    const double t2 = (i + 1 == n) ? theta1 + dtheta : t + step;
+    const Point to = point_at(t2);
+    cubic_to(from + tangent_at(t) * k, to - tangent_at(t2) * k, to);
+    from = to;
+    t = t2;
+  }
+}
+
+Path& Path::arc_to(double rx, double ry, double x_rotation_degrees, bool large_arc, bool sweep, Point p) {
+  check_finite(rx, "arc_to radius");
+  check_finite(ry, "arc_to radius");
+  check_finite(x_rotation_degrees, "arc_to rotation");
+  check_finite(p, "arc_to");
+  ensure_contour();
+  const Point p1 = current_;
+  if (p1 == p) return *this;  // SVG: an arc to the current point is omitted
+  rx = std::abs(rx);
+  ry = std::abs(ry);
+  if (rx == 0 || ry == 0) return line_to(p);
+
+  // SVG 1.1 implementation notes F.6.5: endpoint to centre parameterisation.
+  const double phi = std::fmod(x_rotation_degrees, 360.0) * kPi / 180.0;
+  const double cs = std::cos(phi), sn = std::sin(phi);
+  const double hx = (p1.x - p.x) / 2, hy = (p1.y - p.y) / 2;
+  const double x1p = cs * hx + sn * hy;
+  const double y1p = -sn * hx + cs * hy;
+  // F.6.6: scale the radii up when they cannot reach the end point.
+  const double lambda = (x1p * x1p) / (rx * rx) + (y1p * y1p) / (ry * ry);
+  if (lambda > 1) {
+    const double s = std::sqrt(lambda);
+    rx *= s;
+    ry *= s;
+  }
+  const double rx2 = rx * rx, ry2 = ry * ry;
+  const double num = rx2 * ry2 - rx2 * y1p * y1p - ry2 * x1p * x1p;
+  const double den = rx2 * y1p * y1p + ry2 * x1p * x1p;
+  double coef = (den > 0 && num > 0) ? std::sqrt(num / den) : 0.0;
+  if (large_arc == sweep) coef = -coef;
+  const double cxp = coef * rx * y1p / ry;
+  const double cyp = -coef * ry * x1p / rx;
+  const Point center{cs * cxp - sn * cyp + (p1.x + p.x) / 2, sn * cxp + cs * cyp + (p1.y + p.y) / 2};
+  const Point u{(x1p - cxp) / rx, (y1p - cyp) / ry};
+  const Point v{(-x1p - cxp) / rx, (-y1p - cyp) / ry};
+  const double theta1 = vector_angle({1, 0}, u);
+  double dtheta = vector_angle(u, v);
+  if (!sweep && dtheta > 0) dtheta -= 2 * kPi;
+  if (sweep && dtheta < 0) dtheta += 2 * kPi;
+  if (!std::isfinite(center.x) || !std::isfinite(center.y) || !std::isfinite(dtheta)) return line_to(p);
+  arc_segments(center, rx, ry, phi, theta1, dtheta);
+  // Land exactly on the requested end point (the cosine/sine round trip is off by an ulp or so).
+  points_.back() = p;
+  current_ = p;
+  return *this;
+}
+
+Path& Path::add_rect(const Rect& r) {
+  move_to({r.x0, r.y0});
+  line_to({r.x1, r.y0});
+  line_to({r.x1, r.y1});
+  line_to({r.x0, r.y1});
+  return close();
+}
+
+Path& Path::add_round_rect(const Rect& r, double rx, double ry) {
+  check_finite(rx, "add_round_rect");
+  check_finite(ry, "add_round_rect");
+  rx = std::min(std::abs(rx), std::abs(r.width()) / 2);
+  ry = std::min(std::abs(ry), std::abs(r.height()) / 2);
+  if (rx == 0 || ry == 0) return add_rect(r);
+  move_to({r.x0 + rx, r.y0});
+  line_to({r.x1 - rx, r.y0});
+  arc_to(rx, ry, 0, false, true, {r.x1, r.y0 + ry});
+  line_to({r.x1, r.y1 - ry});
+  arc_to(rx, ry, 0, false, true, {r.x1 - rx, r.y1});
+  line_to({r.x0 + rx, r.y1});
+  arc_to(rx, ry, 0, false, true, {r.x0, r.y1 - ry});
+  line_to({r.x0, r.y0 + ry});
+  arc_to(rx, ry, 0, false, true, {r.x0 + rx, r.y0});
+  return close();
+}
+
+Path& Path::add_ellipse(Point c, double rx, double ry) {
+  check_finite(c, "add_ellipse");
+  check_finite(rx, "add_ellipse");
+  check_finite(ry, "add_ellipse");
+  rx = std::abs(rx);
+  ry = std::abs(ry);
+  move_to({c.x + rx, c.y});
+  arc_segments(c, rx, ry, 0, 0, 2 * kPi);
+  points_.back() = Point{c.x + rx, c.y};
+  return close();
+}
+
+Path& Path::add_polygon(std::span<const Point> pts, bool closed) {
+  for (const Point& p : pts) check_finite(p, "add_polygon");
+  if (pts.empty()) return *this;
+  move_to(pts[0]);
+  for (std::size_t i = 1; i < pts.size(); ++i) line_to(pts[i]);
+  if (closed) close();
+  return *this;
+}
+
+Path& Path::add_path(const Path& other) {
+  std::size_t i = 0;
+  for (Verb v : other.verbs_) {
+    switch (v) {
+      case Verb::Move: move_to(other.points_[i++]); break;
+      case Verb::Line: line_to(other.points_[i++]); break;
+      case Verb::Quad: quad_to(other.points_[i], other.points_[i + 1]); i += 2; break;
+      case Verb::Cubic: cubic_to(other.points_[i], other.points_[i + 1], other.points_[i + 2]); i += 3; break;
+      case Verb::Close: close(); break;
+    }
+  }
+  return *this;
+}
+
+void Path::transform(const Affine& m) {
+  for (Point& p : points_) {
+    p = m.apply(p);
+    if (!is_finite(p)) throw Error("path: transform produced a non-finite coordinate");
+  }
+  current_ = m.apply(current_);
+  contour_start_ = m.apply(contour_start_);
+}
+
+Path Path::transformed(const Affine& m) const {
+  Path copy = *this;
+  copy.transform(m);
+  return copy;
+}
+
+void Path::clear() {
+  verbs_.clear();
+  points_.clear();
+  current_ = contour_start_ = Point{};
+  contour_open_ = false;
+}
+
+Rect Path::control_bounds() const {
+  if (points_.empty()) return {};
+  Rect r = Rect::from_point(points_[0]);
+  for (const Point& p : points_) r.include(p);
+  return r;
+}
+
+Rect Path::bounds() const {
+  if (points_.empty()) return {};
+  Rect r = Rect::from_point(points_[0]);
+  std::size_t i = 0;
+  Point last{};
+  for (Verb v : verbs_) {
+    switch (v) {
+      case Verb::Move:
+      case Verb::Line:
+        last = points_[i++];
+        r.include(last);
+        break;
+      case Verb::Quad: {
+        const Point c = points_[i], p = points_[i + 1];
+        double t[2];
+        int n = quad_extrema(last.x, c.x, p.x, t);
+        n += quad_extrema(last.y, c.y, p.y, t + n);
+        for (int k = 0; k < n; ++k) r.include(eval_quad(last, c, p, t[k]));
+        r.include(p);
+        last = p;
+        i += 2;
+        break;
+      }
+      case Verb::Cubic: {
+        const Point c1 = points_[i], c2 = points_[i + 1], p = points_[i + 2];
+        double t[4];
+        int n = cubic_extrema(last.x, c1.x, c2.x, p.x, t);
+        n += cubic_extrema(last.y, c1.y, c2.y, p.y, t + n);
+        for (int k = 0; k < n; ++k) r.include(eval_cubic(last, c1, c2, p, t[k]));
+        r.include(p);
+        last = p;
+        i += 3;
+        break;
+      }
+      case Verb::Close: break;
+    }
+  }
+  return r;
+}
+
+}  // namespace vraster

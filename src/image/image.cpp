@@ -1,0 +1,50 @@
+// Images: allocation with size limits, clearing.
+#include "vraster/image.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "vraster/error.hpp"
+
+namespace vraster {
+
+void check_image_size(double width, double height) {
+  if (!std::isfinite(width) || !std::isfinite(height) || width < 1 || height < 1) {
+    throw Error("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                " is not a positive size");
+  }
+  if (width > kMaxImageSide || height > kMaxImageSide || width * height > static_cast<double>(kMaxImagePixels)) {
+    throw Error("image size " + std::to_string(static_cast<long long>(width)) + "x" +
+                std::to_string(static_cast<long long>(height)) + " is too large (at most " +
+                std::to_string(kMaxImageSide) + " pixels a side and " + std::to_string(kMaxImagePixels) +
+                " pixels)");
+  }
+}
+
+template <class T>
+BasicImage<T>::BasicImage(int w, int h) : width(w), height(h) {
+  check_image_size(w, h);
+  data.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4, 0);
+}
+
+template <class T>
+void BasicImage<T>::clear(Color c) {
+  const double a = std::clamp(static_cast<double>(c.a), 0.0, 1.0);
+  const double scale = kMax;
+  const T px[4] = {static_cast<T>(std::lround(std::clamp(static_cast<double>(c.r), 0.0, 1.0) * a * scale)),
+                   static_cast<T>(std::lround(std::clamp(static_cast<double>(c.g), 0.0, 1.0) * a * scale)),
+                   static_cast<T>(std::lround(std::clamp(static_cast<double>(c.b), 0.0, 1.0) * a * scale)),
+                   static_cast<T>(std::lround(a * scale))};
+  for (std::size_t i = 0; i < data.size(); i += 4) {
+    data[i] = px[0];
+    data[i + 1] = px[1];
+    data[i + 2] = px[2];
+    data[i + 3] = px[3];
+  }
+}
+
+template struct BasicImage<std::uint8_t>;
+template struct BasicImage<std::uint16_t>;
+
+}  // namespace vraster

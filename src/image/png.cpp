@@ -1,0 +1,171 @@
+// PNG files through libpng. libpng reports errors by longjmp; each libpng call sequence lives in a function with
+// no C++ objects that need destructors, and failures come back as a message that the caller turns into an Error.
+#include "vraster/png.hpp"
+
+#include <png.h>
+
+#include <cerrno>
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "vraster/error.hpp"
+
+namespace vraster {
+namespace {
+
+struct ErrorState {
+  char message[256] = "unknown libpng error";
+};
+
+[[noreturn]] void on_png_error(png_structp png, png_const_charp msg) {
+  auto* state = static_cast<ErrorState*>(png_get_error_ptr(png));
+  std::snprintf(state->message, sizeof state->message, "%s", msg);
+  png_longjmp(png, 1);
+}
+
+void on_png_warning(png_structp, png_const_charp) {}
+
+// Straight (un-premultiplied) big-endian rows ready for libpng.
+template <class T>
+std::vector<png_byte> straight_bytes(const BasicImage<T>& image) {
+  constexpr std::uint32_t kMax = BasicImage<T>::kMax;
+  std::vector<png_byte> out(image.data.size() * sizeof(T));
+  std::size_t o = 0;
+  for (std::size_t i = 0; i < image.data.size(); i += 4) {
+    const std::uint32_t a = image.data[i + 3];
+    for (int c = 0; c < 4; ++c) {
+      std::uint32_t v = image.data[i + c];
+      if (c < 3) v = a == 0 ? 0 : static_cast<std::uint32_t>((std::uint64_t{v} * kMax + a / 2) / a);
+      if (v > kMax) v = kMax;
+      if constexpr (sizeof(T) == 2) out[o++] = static_cast<png_byte>(v >> 8);
+      out[o++] = static_cast<png_byte>(v & 0xFF);
+    }
+  }
+  return out;
+}
+
+// Returns false and fills `state` on a libpng error.
+bool write_rows(FILE* file, int width, int height, int depth, png_byte* bytes, ErrorState& state) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, on_png_error, on_png_warning);
+  if (!png) return false;
+  png_infop info = png_create_info_struct(png);
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return false;
+  }
+  png_init_io(png, file);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), depth,
+               PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  const std::size_t stride = static_cast<std::size_t>(width) * 4 * (depth / 8);
+  for (int y = 0; y < height; ++y) png_write_row(png, bytes + stride * static_cast<std::size_t>(y));
+  png_write_end(png, info);
+  png_destroy_write_struct(&png, &info);
+  return true;
+}
+
+template <class T>
+void write_png_any(const std::string& path, const BasicImage<T>& image) {
+  std::vector<png_byte> bytes = straight_bytes(image);
+  const std::string temp = path + ".partial";
+  FILE* file = std::fopen(temp.c_str(), "wb");
+  if (!file) throw Error("cannot write " + path + ": " + std::strerror(errno));
+  ErrorState state;
+  const bool ok = write_rows(file, image.width, image.height, 8 * sizeof(T), bytes.data(), state);
+  const bool closed = std::fclose(file) == 0;
+  if (!ok || !closed) {
+    std::remove(temp.c_str());
+    throw Error("cannot write " + path + ": " + (ok ? std::string("write failed") : std::string(state.message)));
+  }
+  if (std::rename(temp.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    std::remove(temp.c_str());
+    throw Error("cannot write " + path + ": " + reason);
+  }
+}
+
+struct Decoded {
+  int width = 0, height = 0, depth = 8;
+};
+
+// Reads any PNG as straight RGBA, 8 or 16 bits (`want16`), into `pixels`. No C++ object is created between
+// setjmp and the end, so a libpng error can jump out safely.
+bool read_rows(FILE* file, bool want16, Decoded& out, std::vector<png_byte>& pixels, ErrorState& state) {
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, on_png_error, on_png_warning);
+  if (!png) return false;
+  png_infop info = png_create_info_struct(png);
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    return false;
+  }
+  png_init_io(png, file);
+  png_set_user_limits(png, kMaxImageSide, kMaxImageSide);
+  png_read_info(png, info);
+  const png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
+  if (static_cast<std::uint64_t>(w) * h > static_cast<std::uint64_t>(kMaxImagePixels)) {
+    png_error(png, "image too large");
+  }
+  const int color = png_get_color_type(png, info);
+  const int bits = png_get_bit_depth(png, info);
+  png_set_expand(png);  // palette -> RGB, grey < 8 bits -> 8 bits, tRNS -> alpha
+  if (color == PNG_COLOR_TYPE_GRAY || color == PNG_COLOR_TYPE_GRAY_ALPHA) png_set_gray_to_rgb(png);
+  if (!(color & PNG_COLOR_MASK_ALPHA)) png_set_add_alpha(png, want16 ? 0xFFFF : 0xFF, PNG_FILLER_AFTER);
+  if (want16 && bits < 16) png_set_expand_16(png);
+  if (!want16 && bits == 16) png_set_strip_16(png);
+  const int passes = png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  out.width = static_cast<int>(w);
+  out.height = static_cast<int>(h);
+  out.depth = want16 ? 16 : 8;
+  const std::size_t stride = png_get_rowbytes(png, info);
+  if (stride != static_cast<std::size_t>(w) * 4 * (want16 ? 2 : 1)) png_error(png, "unexpected row layout");
+  pixels.resize(stride * h);
+  for (int pass = 0; pass < passes; ++pass) {
+    for (png_uint_32 y = 0; y < h; ++y) png_read_row(png, pixels.data() + stride * y, nullptr);
+  }
+  png_read_end(png, nullptr);
+  png_destroy_read_struct(&png, &info, nullptr);
+  return true;
+}
+
+template <class T>
+BasicImage<T> read_png_any(const std::string& path) {
+  FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) throw Error("cannot read " + path + ": " + std::strerror(errno));
+  png_byte sig[8] = {};
+  const bool is_png = std::fread(sig, 1, 8, file) == 8 && png_sig_cmp(sig, 0, 8) == 0;
+  if (!is_png) {
+    std::fclose(file);
+    throw Error("cannot read " + path + ": not a PNG file");
+  }
+  std::rewind(file);
+  ErrorState state;
+  Decoded d;
+  std::vector<png_byte> pixels;
+  const bool ok = read_rows(file, sizeof(T) == 2, d, pixels, state);
+  std::fclose(file);
+  if (!ok) throw Error("cannot read " + path + ": " + state.message);
+  BasicImage<T> image(d.width, d.height);
+  constexpr std::uint64_t kMax = BasicImage<T>::kMax;
+  for (std::size_t i = 0; i < image.data.size(); i += 4) {
+    std::uint64_t px[4];
+    for (int c = 0; c < 4; ++c) {
+      px[c] = sizeof(T) == 2 ? (std::uint64_t{pixels[(i + c) * 2]} << 8 | pixels[(i + c) * 2 + 1]) : pixels[i + c];
+    }
+    for (int c = 0; c < 3; ++c) image.data[i + c] = static_cast<T>((px[c] * px[3] + kMax / 2) / kMax);
+    image.data[i + 3] = static_cast<T>(px[3]);
+  }
+  return image;
+}
+
+}  // namespace
+
+void write_png(const std::string& path, const Image& image) { write_png_any(path, image); }
+void write_png(const std::string& path, const Image16& image) { write_png_any(path, image); }
+Image read_png(const std::string& path) { return read_png_any<std::uint8_t>(path); }
+Image16 read_png16(const std::string& path) { return read_png_any<std::uint16_t>(path); }
+
+}  // namespace vraster

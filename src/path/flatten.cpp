@@ -1,0 +1,168 @@
+// Flattening: path (user space) -> transform -> polylines (device space) with a bounded error.
+#include "vraster/flatten.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "vraster/error.hpp"
+
+namespace vraster {
+namespace {
+
+constexpr int kMaxSegmentsPerCurve = 1 << 20;
+// Curves bigger than this many clip sizes are halved before flattening, so Wang's count stays small.
+constexpr double kSplitFactor = 4.0;
+constexpr int kMaxSplitDepth = 48;
+
+int segments_for(double second_difference, double k, double tolerance) {
+  const double n = std::ceil(std::sqrt(k * second_difference / tolerance));
+  if (!(n >= 1)) return 1;  // also catches NaN
+  return n > kMaxSegmentsPerCurve ? kMaxSegmentsPerCurve : static_cast<int>(n);
+}
+
+Rect control_box(const Point* p, int count) {
+  Rect r = Rect::from_point(p[0]);
+  for (int i = 1; i < count; ++i) r.include(p[i]);
+  return r;
+}
+
+class Flattener {
+ public:
+  Flattener(const FlattenOptions& options, Polylines& out) : options_(options), out_(out) {
+    if (options.clip) {
+      // One pixel of margin: nothing within it can change coverage inside the clip, and it keeps round-off
+      // at the border from mattering.
+      clip_ = Rect{options.clip->x0 - 1, options.clip->y0 - 1, options.clip->x1 + 1, options.clip->y1 + 1};
+      clip_size_ = std::max(clip_.width(), clip_.height());
+    }
+  }
+
+  void move(Point p) {
+    finish_contour(false);
+    out_.points.push_back(p);
+    open_ = true;
+  }
+  void line(Point p) { out_.points.push_back(p); }
+  void close() { finish_contour(true); }
+  void finish() { finish_contour(false); }
+
+  void quad(Point p0, Point p1, Point p2, int depth = 0) {
+    const Point pts[3] = {p0, p1, p2};
+    if (options_.clip) {
+      const Rect box = control_box(pts, 3);
+      if (!box.intersects(clip_)) return line(p2);
+      if (depth < kMaxSplitDepth && std::max(box.width(), box.height()) > kSplitFactor * clip_size_) {
+        const Point a = lerp(p0, p1, 0.5), b = lerp(p1, p2, 0.5), m = lerp(a, b, 0.5);
+        quad(p0, a, m, depth + 1);
+        quad(m, b, p2, depth + 1);
+        return;
+      }
+    }
+    const int n = wang_segments_quad(p0, p1, p2, options_.tolerance);
+    // Power basis: B(t) = (a t + b) t + p0.
+    const Point a = p0 - p1 * 2 + p2, b = (p1 - p0) * 2;
+    const double step = 1.0 / n;
+    for (int i = 1; i < n; ++i) {
+      const double t = i * step;
+      out_.points.push_back({(a.x * t + b.x) * t + p0.x, (a.y * t + b.y) * t + p0.y});
+    }
+    line(p2);
+  }
+
+  void cubic(Point p0, Point p1, Point p2, Point p3, int depth = 0) {
+    const Point pts[4] = {p0, p1, p2, p3};
+    if (options_.clip) {
+      const Rect box = control_box(pts, 4);
+      if (!box.intersects(clip_)) return line(p3);
+      if (depth < kMaxSplitDepth && std::max(box.width(), box.height()) > kSplitFactor * clip_size_) {
+        const Point ab = lerp(p0, p1, 0.5), bc = lerp(p1, p2, 0.5), cd = lerp(p2, p3, 0.5);
+        const Point abc = lerp(ab, bc, 0.5), bcd = lerp(bc, cd, 0.5), m = lerp(abc, bcd, 0.5);
+        cubic(p0, ab, abc, m, depth + 1);
+        cubic(m, bcd, cd, p3, depth + 1);
+        return;
+      }
+    }
+    const int n = wang_segments_cubic(p0, p1, p2, p3, options_.tolerance);
+    // Power basis: B(t) = ((a t + b) t + c) t + p0.
+    const Point a = p3 - p0 + (p1 - p2) * 3, b = (p0 - p1 * 2 + p2) * 3, c = (p1 - p0) * 3;
+    const double step = 1.0 / n;
+    for (int i = 1; i < n; ++i) {
+      const double t = i * step;
+      out_.points.push_back({((a.x * t + b.x) * t + c.x) * t + p0.x, ((a.y * t + b.y) * t + c.y) * t + p0.y});
+    }
+    line(p3);
+  }
+
+ private:
+  void finish_contour(bool closed) {
+    if (!open_) return;
+    out_.ends.push_back(static_cast<std::uint32_t>(out_.points.size()));
+    out_.closed.push_back(closed ? 1 : 0);
+    open_ = false;
+  }
+
+  const FlattenOptions& options_;
+  Polylines& out_;
+  Rect clip_{};
+  double clip_size_ = 0;
+  bool open_ = false;
+};
+
+Point device(const Affine& m, Point p) {
+  const Point q = m.apply(p);
+  if (!is_finite(q)) throw Error("flatten: a coordinate is not finite after the transform");
+  return q;
+}
+
+}  // namespace
+
+int wang_segments_quad(Point p0, Point p1, Point p2, double tolerance) {
+  return segments_for(length(p0 - p1 * 2 + p2), 0.25, tolerance);
+}
+
+int wang_segments_cubic(Point p0, Point p1, Point p2, Point p3, double tolerance) {
+  const double m = std::max(length(p0 - p1 * 2 + p2), length(p1 - p2 * 2 + p3));
+  return segments_for(m, 0.75, tolerance);
+}
+
+void flatten(const Path& path, const Affine& transform, const FlattenOptions& options, Polylines& out) {
+  if (!(options.tolerance > 0) || !std::isfinite(options.tolerance)) {
+    throw Error("flatten: tolerance must be a positive number");
+  }
+  if (!transform.is_finite()) throw Error("flatten: transform has a non-finite entry");
+  Flattener f(options, out);
+  const auto pts = path.points();
+  std::size_t i = 0;
+  Point last{};
+  for (Verb v : path.verbs()) {
+    switch (v) {
+      case Verb::Move:
+        last = device(transform, pts[i++]);
+        f.move(last);
+        break;
+      case Verb::Line:
+        last = device(transform, pts[i++]);
+        f.line(last);
+        break;
+      case Verb::Quad: {
+        const Point c = device(transform, pts[i]), p = device(transform, pts[i + 1]);
+        f.quad(last, c, p);
+        last = p;
+        i += 2;
+        break;
+      }
+      case Verb::Cubic: {
+        const Point c1 = device(transform, pts[i]), c2 = device(transform, pts[i + 1]);
+        const Point p = device(transform, pts[i + 2]);
+        f.cubic(last, c1, c2, p);
+        last = p;
+        i += 3;
+        break;
+      }
+      case Verb::Close: f.close(); break;
+    }
+  }
+  f.finish();
+}
+
+}  // namespace vraster

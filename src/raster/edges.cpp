@@ -1,0 +1,107 @@
+// Edge building: polylines -> clipped, top-to-bottom edges -> edge table bucketed by first row.
+#include <algorithm>
+#include <cmath>
+
+#include "vraster/raster.hpp"
+
+namespace vraster {
+
+void Rasterizer::add_edge(Point top, Point bottom, int winding) {
+  if (!(bottom.y > top.y)) return;  // horizontal (or degenerate after clipping): contributes nothing
+  const double dxdy = (bottom.x - top.x) / (bottom.y - top.y);
+  edges_.push_back({top.x, top.y, bottom.x, bottom.y, std::isfinite(dxdy) ? dxdy : 0.0, winding});
+}
+
+// Clips segment p -> q to the device rectangle [0, width] x [0, height] and records what is left:
+//  - parts above or below the rectangle, or right of it, change no pixel inside: dropped;
+//  - parts left of it still change the winding of every pixel to their right: kept as vertical edges at x = 0.
+void Rasterizer::add_clipped_segment(Point p, Point q, int width, int height) {
+  if (p.y == q.y) return;
+  const int winding = q.y > p.y ? 1 : -1;
+  Point a = winding > 0 ? p : q;  // top
+  Point b = winding > 0 ? q : p;  // bottom
+  const double h = height;
+  if (b.y <= 0 || a.y >= h) return;
+  if (a.x >= width && b.x >= width) return;
+  // Interpolate from the endpoint nearer the cut, which keeps far-away endpoints from costing precision.
+  auto x_at_y = [&](double y) {
+    const double t = (y - a.y) / (b.y - a.y);
+    return t < 0.5 ? a.x + (b.x - a.x) * t : b.x - (b.x - a.x) * (1 - t);
+  };
+  if (a.y < 0) a = {x_at_y(0), 0};
+  if (b.y > h) b = {x_at_y(h), h};
+  const double w = width;
+  if (a.x <= 0 && b.x <= 0) return add_edge({0, a.y}, {0, b.y}, winding);
+  if (a.x >= 0 && a.x <= w && b.x >= 0 && b.x <= w) return add_edge(a, b, winding);
+
+  // The segment crosses x = 0 and/or x = width: split it there.
+  auto y_at_x = [&](double x) {
+    const double t = (x - a.x) / (b.x - a.x);
+    const double y = t < 0.5 ? a.y + (b.y - a.y) * t : b.y - (b.y - a.y) * (1 - t);
+    return std::clamp(y, a.y, b.y);
+  };
+  Point cuts[4];
+  int n = 0;
+  cuts[n++] = a;
+  const bool rightward = b.x > a.x;
+  const double first = rightward ? 0.0 : w, second = rightward ? w : 0.0;
+  for (double x : {first, second}) {
+    if ((a.x < x && x < b.x) || (b.x < x && x < a.x)) cuts[n++] = {x, y_at_x(x)};
+  }
+  cuts[n++] = b;
+  for (int i = 0; i + 1 < n; ++i) {
+    const Point s = cuts[i], e = cuts[i + 1];
+    const double mid = 0.5 * (s.x + e.x);
+    if (mid < 0) {
+      add_edge({0, s.y}, {0, e.y}, winding);
+    } else if (mid <= w) {
+      add_edge({std::clamp(s.x, 0.0, w), s.y}, {std::clamp(e.x, 0.0, w), e.y}, winding);
+    }
+  }
+}
+
+void Rasterizer::build_edges(const Polylines& lines, int width, int height) {
+  edges_.clear();
+  for (std::size_t k = 0; k < lines.contour_count(); ++k) {
+    const auto pts = lines.contour(k);
+    const std::size_t n = pts.size();
+    if (n < 2) continue;
+    for (std::size_t i = 0; i < n; ++i) {
+      add_clipped_segment(pts[i], pts[i + 1 == n ? 0 : i + 1], width, height);
+    }
+  }
+  y_min_ = height;
+  y_max_ = 0;
+  for (const Edge& e : edges_) {
+    y_min_ = std::min(y_min_, static_cast<int>(std::floor(e.y0)));
+    y_max_ = std::max(y_max_, static_cast<int>(std::ceil(e.y1)));
+  }
+  y_min_ = std::max(y_min_, 0);
+  y_max_ = std::min(y_max_, height);
+}
+
+// Edge table: a counting sort of the edges by the first row they take part in.
+//  analytic: the row containing the edge's top, floor(y0);
+//  aliased:  the first row whose sample line y = r + 0.5 the edge crosses, ceil(y0 - 0.5) (half-open [y0, y1)).
+void Rasterizer::bucket_edges(bool by_sample_row) {
+  const int rows = std::max(y_max_ - y_min_, 0);
+  bucket_start_.assign(static_cast<std::size_t>(rows) + 1, 0);
+  auto first_row = [&](const Edge& e) {
+    const double r = by_sample_row ? std::ceil(e.y0 - 0.5) : std::floor(e.y0);
+    return std::clamp(static_cast<int>(r), y_min_, y_max_) - y_min_;
+  };
+  for (const Edge& e : edges_) ++bucket_start_[first_row(e)];
+  std::uint32_t sum = 0;
+  for (auto& c : bucket_start_) {
+    const std::uint32_t count = c;
+    c = sum;
+    sum += count;
+  }
+  order_.resize(edges_.size());
+  // Fill using a running cursor per bucket, then restore the starts by shifting.
+  for (std::uint32_t i = 0; i < edges_.size(); ++i) order_[bucket_start_[first_row(edges_[i])]++] = i;
+  for (std::size_t r = bucket_start_.size() - 1; r > 0; --r) bucket_start_[r] = bucket_start_[r - 1];
+  bucket_start_[0] = 0;
+}
+
+}  // namespace vraster

@@ -1,0 +1,293 @@
+// Scanline sweeps over the edge table with an active edge list.
+//
+//   1. build_edges:   polylines -> clipped edges (top to bottom, with winding)
+//   2. bucket_edges:  edge table, edges bucketed by their first row
+//   3. per row:       add the row's bucket to the active list, let every active edge contribute, retire edges
+//                     that end in the row
+//   4. per row:       turn the contributions into coverage under the fill rule -> CoverageSink spans
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "vraster/error.hpp"
+#include "vraster/raster.hpp"
+
+namespace vraster {
+namespace {
+
+bool inside(FillRule rule, int w) {
+  switch (rule) {
+    case FillRule::EvenOdd: return (w & 1) != 0;
+    case FillRule::NonZero: return w != 0;
+    case FillRule::Positive: return w > 0;
+    case FillRule::Negative: return w < 0;
+    case FillRule::AbsGeq2: return w >= 2 || w <= -2;
+    case FillRule::NonExterior: return w != 0;  // reached only after the boundary has been extracted
+  }
+  return false;
+}
+
+// Coverage from the accumulated signed area s (the winding number, averaged over the pixel).
+// Exact where one pixel sees a single winding transition; an approximation where edges cross inside a pixel.
+template <FillRule R>
+inline float coverage_of(double s) {
+  if constexpr (R == FillRule::EvenOdd) {
+    double a = std::abs(s);
+    a -= 2.0 * std::floor(a * 0.5);
+    return static_cast<float>(a > 1.0 ? 2.0 - a : a);
+  } else if constexpr (R == FillRule::Positive) {
+    return static_cast<float>(std::clamp(s, 0.0, 1.0));
+  } else if constexpr (R == FillRule::Negative) {
+    return static_cast<float>(std::clamp(-s, 0.0, 1.0));
+  } else if constexpr (R == FillRule::AbsGeq2) {
+    return static_cast<float>(std::clamp(std::abs(s) - 1.0, 0.0, 1.0));
+  } else {
+    return static_cast<float>(std::min(std::abs(s), 1.0));
+  }
+}
+
+// Adds one straight piece of an edge inside a row to the accumulation cells. The piece runs between x = xa and
+// x = xb (either order) and covers height h of the row (signed by winding). Cell i receives the part of h
+// times the share of the cell right of the piece, cell i + 1 the rest; the running sum along the row is then the
+// signed area of each pixel that lies right of the edge (the winding number averaged over the pixel).
+inline void accumulate_piece(double* acc, double xa, double xb, double h) {
+  if (xa > xb) std::swap(xa, xb);
+  const int i0 = static_cast<int>(xa);
+  const int i1 = static_cast<int>(xb);
+  if (i0 == i1) {
+    const double m = 0.5 * (xa + xb) - i0;
+    acc[i0] += h * (1.0 - m);
+    acc[i0 + 1] += h * m;
+    return;
+  }
+  const double per_x = h / (xb - xa);
+  // First, partial cell.
+  const double f0 = (i0 + 1) - xa;
+  const double h0 = per_x * f0;
+  const double m0 = 1.0 - 0.5 * f0;  // mean x of the piece inside cell i0, relative to i0
+  acc[i0] += h0 * (1.0 - m0);
+  acc[i0 + 1] += h0 * m0;
+  // Whole cells: the piece crosses each at mean x 0.5.
+  const double half = 0.5 * per_x;
+  for (int i = i0 + 1; i < i1; ++i) {
+    acc[i] += half;
+    acc[i + 1] += half;
+  }
+  // Last, partial cell.
+  const double f1 = xb - i1;
+  if (f1 > 0) {
+    const double h1 = per_x * f1;
+    const double m1 = 0.5 * f1;
+    acc[i1] += h1 * (1.0 - m1);
+    acc[i1 + 1] += h1 * m1;
+  }
+}
+
+inline void mark_cells(std::uint64_t* bits, int from, int to) {  // inclusive range
+  int w0 = from >> 6, w1 = to >> 6;
+  const std::uint64_t first = ~std::uint64_t{0} << (from & 63);
+  const std::uint64_t last = ~std::uint64_t{0} >> (63 - (to & 63));
+  if (w0 == w1) {
+    bits[w0] |= first & last;
+    return;
+  }
+  bits[w0] |= first;
+  for (int w = w0 + 1; w < w1; ++w) bits[w] = ~std::uint64_t{0};
+  bits[w1] |= last;
+}
+
+// First set bit at or after `from`, or `limit` when there is none before it.
+inline int next_set(const std::uint64_t* bits, int from, int limit) {
+  int w = from >> 6;
+  std::uint64_t word = bits[w] & (~std::uint64_t{0} << (from & 63));
+  const int last_word = (limit - 1) >> 6;
+  while (word == 0) {
+    if (++w > last_word) return limit;
+    word = bits[w];
+  }
+  return std::min((w << 6) + std::countr_zero(word), limit);
+}
+
+inline int next_clear(const std::uint64_t* bits, int from, int limit) {
+  int w = from >> 6;
+  std::uint64_t word = ~bits[w] & (~std::uint64_t{0} << (from & 63));
+  const int last_word = (limit - 1) >> 6;
+  while (word == 0) {
+    if (++w > last_word) return limit;
+    word = ~bits[w];
+  }
+  return std::min((w << 6) + std::countr_zero(word), limit);
+}
+
+// Sweeps one accumulated row: running sum over touched cells, constant spans over untouched runs.
+// Leaves the accumulation cells and the touched bits zero.
+template <FillRule R>
+void resolve_row(int y, int width, int x_lo, int x_hi, double* acc, std::uint64_t* bits, float* cov,
+                 CoverageSink& sink) {
+  double sum = 0;
+  int x = x_lo;
+  const int limit = x_hi + 1;
+  for (;;) {
+    const int t = x >= limit ? limit : next_set(bits, x, limit);
+    // Untouched cells keep the running sum; past the last touched cell that holds to the end of the row (edges
+    // right of the image were dropped, so the sum need not return to 0 there).
+    const int run_end = t >= limit ? width : std::min(t, width);
+    if (run_end > x) {
+      const float c = coverage_of<R>(sum);
+      if (c > 0) sink.span(y, x, run_end, c);
+    }
+    if (t >= limit) break;
+    const int e = next_clear(bits, t, limit);
+    for (int i = t; i < e; ++i) {
+      sum += acc[i];
+      acc[i] = 0;
+      cov[i - t] = coverage_of<R>(sum);
+    }
+    if (t < width) {
+      int a = 0, b = std::min(e, width) - t;
+      while (a < b && cov[a] == 0) ++a;
+      while (b > a && cov[b - 1] == 0) --b;
+      if (b - a == 1) {
+        sink.span(y, t + a, t + b, cov[a]);
+      } else if (b > a) {
+        sink.row(y, t + a, t + b, cov + a);
+      }
+    }
+    x = e;
+  }
+  for (int w = x_lo >> 6; w <= (x_hi >> 6); ++w) bits[w] = 0;
+}
+
+template <FillRule R>
+void sweep_analytic_rows(const std::vector<Edge>& edges, const std::vector<std::uint32_t>& order,
+                         const std::vector<std::uint32_t>& bucket_start, std::vector<std::uint32_t>& active,
+                         int y_min, int y_max, int width, double* acc, std::uint64_t* bits, float* cov,
+                         CoverageSink& sink) {
+  active.clear();
+  for (int y = y_min; y < y_max; ++y) {
+    const int r = y - y_min;
+    for (std::uint32_t k = bucket_start[r]; k < bucket_start[r + 1]; ++k) active.push_back(order[k]);
+    if (active.empty()) continue;
+    const double top = y, bottom = y + 1.0;
+    int x_lo = width + 1, x_hi = 0;
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < active.size(); ++k) {
+      const Edge& e = edges[active[k]];
+      const double ya = std::max(e.y0, top), yb = std::min(e.y1, bottom);
+      if (yb > ya) {
+        const double xa = ya == e.y0 ? e.x0 : e.x_at(ya);
+        const double xb = yb == e.y1 ? e.x1 : e.x_at(yb);
+        accumulate_piece(acc, xa, xb, (yb - ya) * e.winding);
+        const int c0 = static_cast<int>(std::min(xa, xb)), c1 = static_cast<int>(std::max(xa, xb)) + 1;
+        mark_cells(bits, c0, c1);
+        x_lo = std::min(x_lo, c0);
+        x_hi = std::max(x_hi, c1);
+      }
+      if (e.y1 > bottom) active[kept++] = active[k];
+    }
+    active.resize(kept);
+    if (x_lo <= x_hi) resolve_row<R>(y, width, x_lo, x_hi, acc, bits, cov, sink);
+  }
+}
+
+}  // namespace
+
+void Rasterizer::sweep_analytic(FillRule rule, int width, CoverageSink& sink) {
+  bucket_edges(false);
+  const std::size_t cells = static_cast<std::size_t>(width) + 2;
+  if (accumulation_.size() < cells) accumulation_.assign(cells, 0.0);
+  if (touched_.size() < cells / 64 + 1) touched_.assign(cells / 64 + 1, 0);
+  if (row_coverage_.size() < cells) row_coverage_.resize(cells);
+  double* acc = accumulation_.data();
+  std::uint64_t* bits = touched_.data();
+  float* cov = row_coverage_.data();
+  switch (rule) {
+    case FillRule::EvenOdd:
+      return sweep_analytic_rows<FillRule::EvenOdd>(edges_, order_, bucket_start_, active_, y_min_, y_max_, width,
+                                                    acc, bits, cov, sink);
+    case FillRule::Positive:
+      return sweep_analytic_rows<FillRule::Positive>(edges_, order_, bucket_start_, active_, y_min_, y_max_, width,
+                                                     acc, bits, cov, sink);
+    case FillRule::Negative:
+      return sweep_analytic_rows<FillRule::Negative>(edges_, order_, bucket_start_, active_, y_min_, y_max_, width,
+                                                     acc, bits, cov, sink);
+    case FillRule::AbsGeq2:
+      return sweep_analytic_rows<FillRule::AbsGeq2>(edges_, order_, bucket_start_, active_, y_min_, y_max_, width,
+                                                    acc, bits, cov, sink);
+    case FillRule::NonZero:
+    case FillRule::NonExterior:
+      return sweep_analytic_rows<FillRule::NonZero>(edges_, order_, bucket_start_, active_, y_min_, y_max_, width,
+                                                    acc, bits, cov, sink);
+  }
+}
+
+// Aliased: one sample per pixel at its centre (x + 0.5, y + 0.5). An edge takes part in the sample rows with
+// y0 <= y + 0.5 < y1 (so a vertex on a sample line counts once and horizontal edges never do); a pixel is inside
+// when its centre lies in [left crossing, right crossing) (top-left rule: of two shapes sharing an edge exactly
+// one owns each pixel centre on it).
+void Rasterizer::sweep_aliased(FillRule rule, int width, CoverageSink& sink) {
+  bucket_edges(true);
+  active_.clear();
+  for (int y = y_min_; y < y_max_; ++y) {
+    const int r = y - y_min_;
+    for (std::uint32_t k = bucket_start_[r]; k < bucket_start_[r + 1]; ++k) active_.push_back(order_[k]);
+    const double sample = y + 0.5;
+    // Retire edges that end at or above this sample line, and find where the others cross it.
+    crossings_.clear();
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < active_.size(); ++k) {
+      const Edge& e = edges_[active_[k]];
+      if (e.y1 <= sample) continue;
+      active_[kept++] = active_[k];
+      if (e.y0 <= sample) crossings_.push_back({e.x_at(sample), active_[k]});
+    }
+    active_.resize(kept);
+    if (crossings_.empty()) continue;
+    // The crossings of the previous row are nearly sorted: insertion sort is linear in practice.
+    for (std::size_t i = 1; i < crossings_.size(); ++i) {
+      const Crossing c = crossings_[i];
+      std::size_t j = i;
+      while (j > 0 && crossings_[j - 1].x > c.x) {
+        crossings_[j] = crossings_[j - 1];
+        --j;
+      }
+      crossings_[j] = c;
+    }
+    // Keep the active list in crossing order so next row's sort has little to do.
+    for (std::size_t i = 0; i < crossings_.size(); ++i) active_[i] = crossings_[i].edge;
+    active_.resize(crossings_.size());
+    int w = 0;
+    int span_start = 0;
+    bool in = false;
+    for (const Crossing& c : crossings_) {
+      w += edges_[c.edge].winding;
+      const bool now = inside(rule, w);
+      if (now == in) continue;
+      const int px = static_cast<int>(std::ceil(c.x - 0.5));
+      if (now) {
+        span_start = px;
+      } else {
+        const int x0 = std::max(span_start, 0), x1 = std::min(px, width);
+        if (x1 > x0) sink.span(y, x0, x1, 1.0f);
+      }
+      in = now;
+    }
+    // Still inside after the last crossing: the closing edges lie right of the image and were dropped.
+    if (in && span_start < width) sink.span(y, std::max(span_start, 0), width, 1.0f);
+  }
+}
+
+void Rasterizer::fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
+                      CoverageSink& sink) {
+  if (width <= 0 || height <= 0) return;
+  if (rule == FillRule::NonExterior) throw Error("fill rule 'nonexterior' is not available in this build yet");
+  build_edges(lines, width, height);
+  if (edges_.empty()) return;
+  if (aa == AntiAlias::None) {
+    sweep_aliased(rule, width, sink);
+  } else {
+    sweep_analytic(rule, width, sink);
+  }
+}
+
+}  // namespace vraster

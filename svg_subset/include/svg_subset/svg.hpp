@@ -1,0 +1,92 @@
+// svg_subset: reads a subset of SVG into a resolved list of draw items, and renders it with vraster.
+//
+// Data flow: XML text (pugixml) -> element tree walk (presentation attributes inherited, transforms composed)
+// -> Document (flat, fully resolved draw items in paint order) -> render() through vraster::Renderer.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vraster/error.hpp"
+#include "vraster/geometry.hpp"
+#include "vraster/image.hpp"
+#include "vraster/paint.hpp"
+#include "vraster/path.hpp"
+#include "vraster/raster.hpp"
+
+namespace vraster::svg {
+
+/// A problem in an SVG file or in path data, with its 1-based position in the text (line 0 when unknown).
+/// what() reads "FILE:LINE:COLUMN: message".
+class ParseError : public Error {
+ public:
+  ParseError(const std::string& file, int line, int column, const std::string& message);
+  int line() const { return line_; }
+  int column() const { return column_; }
+  const std::string& message() const { return message_; }
+
+ private:
+  int line_, column_;
+  std::string message_;
+};
+
+/// A problem in path data at a byte offset of the `d` string.
+class PathDataError : public Error {
+ public:
+  PathDataError(std::size_t offset, const std::string& message);
+  std::size_t offset() const { return offset_; }
+  const std::string& message() const { return message_; }
+
+ private:
+  std::size_t offset_;
+  std::string message_;
+};
+
+/// Parses SVG path data (the whole SVG 1.1 grammar: M m L l H h V v C c S s Q q T t A a Z z, implicit repetition,
+/// compact numbers and arc flags such as "a1 1 0 00.5.5" or "1e-3-2") and appends it to `out`.
+/// Throws PathDataError naming the first error; SVG says to render up to the error, so `out` keeps the
+/// segments before it.
+void parse_path_data(std::string_view d, Path& out);
+
+/// Parses a colour: #rgb, #rrggbb, rgb(...), the CSS named colours. Returns nothing for "none" or garbage.
+std::optional<Color> parse_color(std::string_view text, bool& is_none);
+
+/// Parses an SVG transform list ("translate(1 2) rotate(30)"); returns false on a syntax error.
+bool parse_transform(std::string_view text, Affine& out);
+
+/// One filled shape, fully resolved: user-space path, its transform to device pixels, paint and rule.
+struct FillItem {
+  Path path;
+  Affine transform;  ///< user space -> device pixels (viewBox and every ancestor transform composed)
+  Color color;       ///< opacity and fill-opacity already folded into color.a
+  FillRule rule = FillRule::NonZero;
+};
+
+/// A parsed document: its pixel size and the items in paint order.
+struct Document {
+  int width = 0;
+  int height = 0;
+  std::vector<FillItem> fills;
+  std::vector<std::string> warnings;  ///< "LINE:COLUMN: message" for things ignored
+};
+
+/// Parses SVG text. `file` is used only in messages. Throws ParseError for malformed XML, a missing or bad
+/// root size, malformed path data, and other errors that make the document unusable.
+Document parse_svg(std::string_view text, const std::string& file = "<memory>");
+/// Reads and parses a file (throws vraster::Error when it cannot be read).
+Document load_svg(const std::string& path);
+
+/// Render settings shared by every item (a rule given here overrides the file's fill-rule).
+struct RenderSettings {
+  AntiAlias aa = AntiAlias::Analytic;
+  double tolerance = kDefaultTolerance;
+  std::optional<FillRule> rule_override;
+};
+
+/// Draws every item of `doc` onto `image` (which should be doc.width x doc.height) in order.
+template <class T>
+void render(const Document& doc, BasicImage<T>& image, const RenderSettings& settings, Renderer& renderer);
+
+}  // namespace vraster::svg
