@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string_view>
 #include <vector>
 
@@ -26,6 +27,8 @@ enum class AntiAlias : std::uint8_t {
   None,      ///< one sample at the pixel centre, top-left rule; coverage is 0 or 1
   Analytic,  ///< area of the pixel under the path by cell cover/area accumulation (exact unless edges cross
              ///< inside a pixel)
+  Exact,     ///< true area of (filled region x pixel) for every rule: the boundary of the filled region is
+             ///< extracted first (a sweep over the edges' crossings), then accumulated as in Analytic
 };
 
 /// Parses "evenodd", "nonzero", ... ; returns false for an unknown name.
@@ -60,13 +63,24 @@ struct Edge {
   }
 };
 
+namespace detail {
+class BoundarySweep;
+}
+
 /// Scan converts flattened contours. Keeps its buffers between calls, so one Rasterizer per thread,
 /// reused across paths and frames, allocates nothing in steady state.
 class Rasterizer {
  public:
+  Rasterizer();
+  ~Rasterizer();
+  Rasterizer(Rasterizer&&) noexcept;
+  Rasterizer& operator=(Rasterizer&&) noexcept;
+
   /// Rasterizes every contour of `lines` (closed implicitly) into the pixels [0, width) x [0, height),
   /// handing coverage to `sink`. Geometry outside that rectangle costs almost nothing: edges are clipped to it
-  /// (parts left of it become vertical edges at x = 0 so they keep their winding).
+  /// (parts left of it become vertical edges at x = 0 so they keep their winding). NonExterior is the exception:
+  /// whether a region reaches the outside can be decided far from the image, so its boundary is found on the
+  /// unclipped edges first (cost grows with all the geometry), then clipped.
   void fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
 
   /// The clipped edges of the last fill() (for tests and tools).
@@ -74,6 +88,9 @@ class Rasterizer {
 
  private:
   void build_edges(const Polylines& lines, int width, int height);
+  void build_unclipped_edges(const Polylines& lines);
+  void clip_pieces(int width, int height);
+  void compute_row_range(int height);
   void sweep_aliased(FillRule rule, int width, CoverageSink& sink);
   void sweep_analytic(FillRule rule, int width, CoverageSink& sink);
   void bucket_edges(bool by_sample_row);
@@ -81,6 +98,8 @@ class Rasterizer {
   void add_clipped_segment(Point p, Point q, int width, int height);
 
   std::vector<Edge> edges_;
+  std::vector<Edge> horizontals_;            // NonExterior: horizontal segments (they matter for connectivity)
+  std::vector<Edge> pieces_;                 // boundary pieces from the boundary sweep
   int y_min_ = 0, y_max_ = 0;               // rows touched by edges_, [y_min_, y_max_)
   std::vector<std::uint32_t> bucket_start_;  // edge table: edges starting in row r are order_[bucket_start_[r-y_min_] ..]
   std::vector<std::uint32_t> order_;
@@ -93,6 +112,7 @@ class Rasterizer {
   std::vector<double> accumulation_;         // analytic sweep: one row of signed area deltas, width + 2 cells
   std::vector<std::uint64_t> touched_;       // analytic sweep: one bit per cell written in the current row
   std::vector<float> row_coverage_;          // coverage handed to the sink
+  std::unique_ptr<detail::BoundarySweep> boundary_;
 };
 
 }  // namespace vraster

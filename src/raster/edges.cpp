@@ -70,6 +70,10 @@ void Rasterizer::build_edges(const Polylines& lines, int width, int height) {
       add_clipped_segment(pts[i], pts[i + 1 == n ? 0 : i + 1], width, height);
     }
   }
+  compute_row_range(height);
+}
+
+void Rasterizer::compute_row_range(int height) {
   y_min_ = height;
   y_max_ = 0;
   for (const Edge& e : edges_) {
@@ -78,6 +82,41 @@ void Rasterizer::build_edges(const Polylines& lines, int width, int height) {
   }
   y_min_ = std::max(y_min_, 0);
   y_max_ = std::min(y_max_, height);
+}
+
+// All segments as edges, unclipped; horizontal ones kept apart (NonExterior needs both).
+void Rasterizer::build_unclipped_edges(const Polylines& lines) {
+  edges_.clear();
+  horizontals_.clear();
+  for (std::size_t k = 0; k < lines.contour_count(); ++k) {
+    const auto pts = lines.contour(k);
+    const std::size_t n = pts.size();
+    if (n < 2) continue;
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point p = pts[i], q = pts[i + 1 == n ? 0 : i + 1];
+      if (p.y == q.y) {
+        if (p.x != q.x) horizontals_.push_back({p.x, p.y, q.x, q.y, 0.0, 0});
+      } else if (q.y > p.y) {
+        add_edge(p, q, 1);
+      } else {
+        add_edge(q, p, -1);
+      }
+    }
+  }
+}
+
+// Replaces the edges by the boundary pieces, clipped to the image.
+void Rasterizer::clip_pieces(int width, int height) {
+  edges_.clear();
+  for (const Edge& e : pieces_) {
+    const Point top{e.x0, e.y0}, bottom{e.x1, e.y1};
+    if (e.winding > 0) {
+      add_clipped_segment(top, bottom, width, height);
+    } else {
+      add_clipped_segment(bottom, top, width, height);
+    }
+  }
+  compute_row_range(height);
 }
 
 // Edge table: a counting sort of the edges by the first row they take part in.

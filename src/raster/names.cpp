@@ -16,9 +16,10 @@ constexpr std::array<std::pair<std::string_view, FillRule>, 6> kRules{{
     {"abs-geq-2", FillRule::AbsGeq2},
 }};
 
-constexpr std::array<std::pair<std::string_view, AntiAlias>, 2> kModes{{
+constexpr std::array<std::pair<std::string_view, AntiAlias>, 3> kModes{{
     {"none", AntiAlias::None},
     {"analytic", AntiAlias::Analytic},
+    {"exact", AntiAlias::Exact},
 }};
 
 }  // namespace

@@ -9,7 +9,7 @@
 #include <bit>
 #include <cmath>
 
-#include "vraster/error.hpp"
+#include "raster/boundary.hpp"
 #include "vraster/raster.hpp"
 
 namespace vraster {
@@ -277,11 +277,32 @@ void Rasterizer::sweep_aliased(FillRule rule, int width, CoverageSink& sink) {
   }
 }
 
+Rasterizer::Rasterizer() : boundary_(std::make_unique<detail::BoundarySweep>()) {}
+Rasterizer::~Rasterizer() = default;
+Rasterizer::Rasterizer(Rasterizer&&) noexcept = default;
+Rasterizer& Rasterizer::operator=(Rasterizer&&) noexcept = default;
+
 void Rasterizer::fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
                       CoverageSink& sink) {
   if (width <= 0 || height <= 0) return;
-  if (rule == FillRule::NonExterior) throw Error("fill rule 'nonexterior' is not available in this build yet");
-  build_edges(lines, width, height);
+  if (rule == FillRule::NonExterior) {
+    // The boundary of the non-exterior region, then a non-zero fill of it in the requested mode.
+    build_unclipped_edges(lines);
+    pieces_.clear();
+    boundary_->extract(edges_, horizontals_, rule, pieces_);
+    clip_pieces(width, height);
+    rule = FillRule::NonZero;
+  } else {
+    build_edges(lines, width, height);
+    if (aa == AntiAlias::Exact && !edges_.empty()) {
+      // Only the boundary of the filled region: its pieces never cross, so the accumulation is exact.
+      pieces_.clear();
+      boundary_->extract(edges_, {}, rule, pieces_);
+      edges_.swap(pieces_);
+      compute_row_range(height);
+      rule = FillRule::NonZero;
+    }
+  }
   if (edges_.empty()) return;
   if (aa == AntiAlias::None) {
     sweep_aliased(rule, width, sink);

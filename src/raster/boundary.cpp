@@ -1,0 +1,360 @@
+// Boundary extraction by a sweep over the edges' arrangement.
+//
+//   1. Edges enter the sweep at their top, sorted by x at the sweep line (ties: by slope below it).
+//   2. Neighbours in that order are tested for a crossing before either ends; crossings are events, and at each
+//      the two neighbours swap: only the face between them changes, so a crossing costs O(1) (plus a heap push).
+//   3. Each edge knows the winding number (and, for NonExterior, the face) on its left; its weight is
+//      filled(right) - filled(left), in {-1, 0, +1}. Whenever a weight changes, the piece of the edge since the last
+//      change is written out with the old weight.
+//   4. NonExterior is not a function of the winding number: faces get ids, faces that meet along a free stretch
+//      of the sweep line (not blocked by an edge point or a horizontal edge) are united, and the faces joined to
+//      the outside (id 0) are exterior. That is only known at the end, so the sweep runs twice with the same ids.
+#include "raster/boundary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace vraster::detail {
+namespace {
+
+bool rule_holds(FillRule rule, int w) {
+  switch (rule) {
+    case FillRule::EvenOdd: return (w & 1) != 0;
+    case FillRule::NonZero: return w != 0;
+    case FillRule::Positive: return w > 0;
+    case FillRule::Negative: return w < 0;
+    case FillRule::AbsGeq2: return w >= 2 || w <= -2;
+    case FillRule::NonExterior: return w != 0;
+  }
+  return false;
+}
+
+// x of an edge at height y, exact at its end points.
+constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
+
+inline double x_of(const Edge& e, double y) {
+  if (y == e.y0) return e.x0;
+  if (y == e.y1) return e.x1;
+  return e.x_at(y);
+}
+
+class UnionFind {
+ public:
+  void reset() { parent_.assign(1, 0); }
+  std::int32_t make() {
+    parent_.push_back(static_cast<std::int32_t>(parent_.size()));
+    return parent_.back();
+  }
+  std::int32_t find(std::int32_t i) {
+    while (parent_[i] != i) {
+      parent_[i] = parent_[parent_[i]];
+      i = parent_[i];
+    }
+    return i;
+  }
+  void unite(std::int32_t a, std::int32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return;
+    if (a > b) std::swap(a, b);
+    parent_[b] = a;  // the smaller id wins, so the outside (0) stays its own root
+  }
+  std::size_t size() const { return parent_.size(); }
+
+ private:
+  std::vector<std::int32_t> parent_;
+};
+
+}  // namespace
+
+struct BoundarySweep::State {
+  UnionFind faces;
+  std::vector<std::uint8_t> exterior;  // NonExterior second pass: per face id, whether it is outside
+};
+
+void BoundarySweep::push_event(const Event& e) {
+  heap_.push_back(e);
+  std::push_heap(heap_.begin(), heap_.end(), Later{});
+}
+
+BoundarySweep::Event BoundarySweep::pop_event() {
+  std::pop_heap(heap_.begin(), heap_.end(), Later{});
+  const Event e = heap_.back();
+  heap_.pop_back();
+  return e;
+}
+
+// Tests the neighbours at positions p and p + 1 for a crossing below y, and schedules it.
+void BoundarySweep::check_pair(std::size_t p, double y) {
+  const std::uint32_t a = order_[p], b = order_[p + 1];
+  const Edge& ea = (*edges_)[a];
+  const Edge& eb = (*edges_)[b];
+  const double y_end = std::min(ea.y1, eb.y1);
+  if (!(y_end > y)) return;
+  const double d1 = x_of(eb, y_end) - x_of(ea, y_end);
+  if (!(d1 < 0)) return;  // still in order where the first of them ends: no crossing
+  const double d0 = x_of(eb, y) - x_of(ea, y);
+  double yc = y;
+  if (d0 > 0) yc = std::clamp(y + (y_end - y) * (d0 / (d0 - d1)), y, y_end);
+  push_event({yc, 1, a, b});
+}
+
+template <class Filled>
+void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>& horizontals, bool track_faces,
+                        State& state, Filled&& filled, std::vector<Edge>* out) {
+  edges_ = &edges;
+  const std::size_t n = edges.size();
+  starts_.resize(n);
+  std::iota(starts_.begin(), starts_.end(), 0u);
+  std::sort(starts_.begin(), starts_.end(), [&](std::uint32_t i, std::uint32_t j) {
+    const Edge &a = edges[i], &b = edges[j];
+    return a.y0 < b.y0 || (a.y0 == b.y0 && (a.x0 < b.x0 || (a.x0 == b.x0 && a.dxdy < b.dxdy)));
+  });
+  pos_.assign(n, -1);
+  left_winding_.assign(n, 0);
+  left_face_.assign(n, 0);
+  weight_.assign(n, 0);
+  since_.assign(n, 0);
+  dirty_.assign(n, 0);
+  order_.clear();
+  heap_.clear();
+  state.faces.reset();
+
+  auto emit = [&](std::uint32_t e, double y) {
+    if (out && weight_[e] != 0 && y > since_[e]) {
+      const Edge& s = edges[e];
+      const double y0 = since_[e];
+      Edge piece{x_of(s, y0), y0, x_of(s, y), y, s.dxdy, weight_[e]};
+      out->push_back(piece);
+    }
+    since_[e] = y;
+  };
+  auto right_face = [&](std::size_t p) { return p + 1 < order_.size() ? left_face_[order_[p + 1]] : 0; };
+  auto update_weight = [&](std::size_t p, double y) {
+    const std::uint32_t e = order_[p];
+    const int wl = left_winding_[e];
+    const int wr = wl + edges[e].winding;
+    const int w = static_cast<int>(filled(wr, right_face(p))) - static_cast<int>(filled(wl, left_face_[e]));
+    if (w != weight_[e]) {
+      emit(e, y);
+      weight_[e] = static_cast<std::int8_t>(w);
+    }
+  };
+
+  std::vector<std::uint32_t> h_order(horizontals.size());
+  std::iota(h_order.begin(), h_order.end(), 0u);
+  std::sort(h_order.begin(), h_order.end(),
+            [&](std::uint32_t i, std::uint32_t j) { return horizontals[i].y0 < horizontals[j].y0; });
+
+  std::size_t next_start = 0, next_h = 0;
+  std::vector<std::uint32_t> ends, new_edges;
+  std::vector<std::pair<double, double>> blocked;
+  std::vector<double> above_x;
+  std::vector<std::int32_t> above_face;
+  const double inf = std::numeric_limits<double>::infinity();
+
+  for (;;) {
+    const double ys = next_start < n ? edges[starts_[next_start]].y0 : inf;
+    const double yh = next_h < h_order.size() ? horizontals[h_order[next_h]].y0 : inf;
+    const double ye = heap_.empty() ? inf : heap_.front().y;
+    const double y = std::min({ys, yh, ye});
+    if (y == inf) break;
+    const bool batch = ys == y || yh == y || (ye == y && heap_.front().kind == 0);
+    if (!batch) {
+      // A crossing of two neighbours: swap them.
+      const Event ev = pop_event();
+      const std::int32_t p = pos_[ev.a];
+      if (p < 0 || pos_[ev.b] != p + 1) continue;  // stale: they are no longer neighbours
+      const std::uint32_t a = ev.a, b = ev.b;
+      const auto pa = static_cast<std::size_t>(p);
+      order_[pa] = b;
+      order_[pa + 1] = a;
+      pos_[b] = p;
+      pos_[a] = p + 1;
+      left_winding_[b] = left_winding_[a];
+      left_winding_[a] = left_winding_[b] + edges[b].winding;
+      if (track_faces) {
+        left_face_[b] = left_face_[a];
+        left_face_[a] = state.faces.make();  // the face opening below the crossing point
+      }
+      update_weight(pa, y);
+      update_weight(pa + 1, y);
+      if (pa > 0) check_pair(pa - 1, y);
+      if (pa + 2 < order_.size()) check_pair(pa + 1, y);
+      continue;
+    }
+
+    // A batch at height y: edges ending, edges starting, horizontal edges.
+    ends.clear();
+    while (!heap_.empty() && heap_.front().y == y && heap_.front().kind == 0) ends.push_back(pop_event().a);
+    const std::size_t start_begin = next_start;
+    while (next_start < n && edges[starts_[next_start]].y0 == y) ++next_start;
+    blocked.clear();
+    while (next_h < h_order.size() && horizontals[h_order[next_h]].y0 == y) {
+      const Edge& h = horizontals[h_order[next_h++]];
+      blocked.emplace_back(std::min(h.x0, h.x1), std::max(h.x0, h.x1));
+    }
+
+    // An edge that ends where one of the same direction starts continues through the vertex: the new edge takes
+    // the old one's place, winding and faces (the common case along a contour, O(1)).
+    new_edges.clear();
+    std::sort(ends.begin(), ends.end(), [&](std::uint32_t i, std::uint32_t j) { return edges[i].x1 < edges[j].x1; });
+    consumed_.assign(ends.size(), 0);
+    std::size_t ei = 0;
+    for (std::size_t k = start_begin; k < next_start; ++k) {
+      const std::uint32_t s = starts_[k];
+      const Edge& es = edges[s];
+      while (ei < ends.size() && edges[ends[ei]].x1 < es.x0) ++ei;
+      std::size_t m = ei;
+      while (m < ends.size() && edges[ends[m]].x1 == es.x0 &&
+             (consumed_[m] || edges[ends[m]].winding != es.winding)) {
+        ++m;
+      }
+      if (blocked.empty() && m < ends.size() && edges[ends[m]].x1 == es.x0) {
+        const std::uint32_t e = ends[m];
+        emit(e, y);
+        const std::int32_t p = pos_[e];
+        order_[p] = s;
+        pos_[s] = p;
+        pos_[e] = -1;
+        left_winding_[s] = left_winding_[e];
+        left_face_[s] = left_face_[e];
+        weight_[s] = weight_[e];
+        since_[s] = y;
+        dirty_[s] = 1;
+        push_event({es.y1, 0, s, 0});
+        consumed_[m] = 1;
+      } else {
+        new_edges.push_back(s);
+      }
+    }
+    std::size_t unmatched_ends = 0;
+    for (std::size_t m = 0; m < ends.size(); ++m) unmatched_ends += !consumed_[m];
+
+    if (unmatched_ends == 0 && new_edges.empty() && blocked.empty()) {
+      for (std::size_t p = 0; p + 1 < order_.size(); ++p) {
+        if (dirty_[order_[p]] | dirty_[order_[p + 1]]) check_pair(p, y);
+      }
+      for (std::uint32_t e : order_) dirty_[e] = 0;
+      continue;
+    }
+
+    // General case: rebuild the order at y, O(active edges).
+    if (track_faces) {
+      above_x.clear();
+      above_face.clear();
+      for (std::uint32_t e : order_) {
+        above_x.push_back(x_of(edges[e], y));
+        above_face.push_back(left_face_[e]);
+      }
+      above_face.push_back(0);
+    }
+    for (std::size_t m = 0; m < ends.size(); ++m) {
+      if (consumed_[m]) continue;
+      const std::uint32_t e = ends[m];
+      emit(e, y);
+      const std::int32_t p = pos_[e];
+      order_[p] = kRemoved;
+      pos_[e] = -1;
+    }
+    // The neighbours of removed edges get new neighbours.
+    for (std::size_t p = 0; p < order_.size(); ++p) {
+      if (order_[p] != kRemoved) continue;
+      if (p > 0 && order_[p - 1] != kRemoved) dirty_[order_[p - 1]] = 1;
+      if (p + 1 < order_.size() && order_[p + 1] != kRemoved) dirty_[order_[p + 1]] = 1;
+    }
+    std::erase(order_, kRemoved);
+    std::sort(new_edges.begin(), new_edges.end(), [&](std::uint32_t i, std::uint32_t j) {
+      return edges[i].x0 < edges[j].x0 || (edges[i].x0 == edges[j].x0 && edges[i].dxdy < edges[j].dxdy);
+    });
+    scratch_.clear();
+    std::size_t oi = 0;
+    for (std::uint32_t s : new_edges) {
+      const Edge& es = edges[s];
+      while (oi < order_.size()) {
+        const Edge& eo = edges[order_[oi]];
+        const double xo = x_of(eo, y);
+        if (xo < es.x0 || (xo == es.x0 && eo.dxdy <= es.dxdy)) {
+          scratch_.push_back(order_[oi++]);
+        } else {
+          break;
+        }
+      }
+      scratch_.push_back(s);
+      dirty_[s] = 1;
+      since_[s] = y;
+      weight_[s] = 0;
+      push_event({es.y1, 0, s, 0});
+    }
+    while (oi < order_.size()) scratch_.push_back(order_[oi++]);
+    order_.swap(scratch_);
+
+    int w = 0;
+    for (std::size_t p = 0; p < order_.size(); ++p) {
+      const std::uint32_t e = order_[p];
+      pos_[e] = static_cast<std::int32_t>(p);
+      left_winding_[e] = w;
+      w += edges[e].winding;
+    }
+    if (track_faces) {
+      // Faces below the line: fresh ids (outermost ones are the outside), united with the faces above wherever
+      // the line between them is free.
+      for (std::size_t p = 0; p < order_.size(); ++p) left_face_[order_[p]] = p == 0 ? 0 : state.faces.make();
+      std::sort(blocked.begin(), blocked.end());
+      std::vector<double> cuts;
+      cuts.reserve(above_x.size() + order_.size() + 2 * blocked.size());
+      cuts.insert(cuts.end(), above_x.begin(), above_x.end());
+      for (std::uint32_t e : order_) cuts.push_back(x_of(edges[e], y));
+      for (const auto& [lo, hi] : blocked) {
+        cuts.push_back(lo);
+        cuts.push_back(hi);
+      }
+      std::sort(cuts.begin(), cuts.end());
+      cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+      std::size_t ia = 0, ib = 0, ih = 0;
+      for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+        const double lo = cuts[c], hi = cuts[c + 1];
+        while (ia < above_x.size() && above_x[ia] <= lo) ++ia;
+        while (ib < order_.size() && x_of(edges[order_[ib]], y) <= lo) ++ib;
+        while (ih < blocked.size() && blocked[ih].second <= lo) ++ih;
+        bool is_blocked = false;
+        for (std::size_t k = ih; k < blocked.size() && blocked[k].first <= lo; ++k) {
+          if (blocked[k].second >= hi) {
+            is_blocked = true;
+            break;
+          }
+        }
+        if (is_blocked) continue;
+        const std::int32_t below = ib < order_.size() ? left_face_[order_[ib]] : 0;
+        state.faces.unite(above_face[ia], below);
+      }
+    }
+    for (std::size_t p = 0; p < order_.size(); ++p) update_weight(p, y);
+    for (std::size_t p = 0; p + 1 < order_.size(); ++p) {
+      if (dirty_[order_[p]] | dirty_[order_[p + 1]]) check_pair(p, y);
+    }
+    for (std::uint32_t e : order_) dirty_[e] = 0;
+  }
+}
+
+void BoundarySweep::extract(const std::vector<Edge>& edges, const std::vector<Edge>& horizontals, FillRule rule,
+                            std::vector<Edge>& out) {
+  State state;
+  if (rule != FillRule::NonExterior) {
+    static const std::vector<Edge> kNone;
+    run(edges, kNone, false, state, [rule](int w, std::int32_t) { return rule_holds(rule, w); }, &out);
+    return;
+  }
+  // First pass: which faces reach the outside. Second pass: the same sweep (same face ids), writing the pieces
+  // between exterior and non-exterior faces.
+  run(edges, horizontals, true, state, [](int, std::int32_t) { return false; }, nullptr);
+  state.exterior.resize(state.faces.size());
+  for (std::size_t i = 0; i < state.exterior.size(); ++i) {
+    state.exterior[i] = state.faces.find(static_cast<std::int32_t>(i)) == 0;
+  }
+  std::vector<std::uint8_t> exterior = std::move(state.exterior);
+  run(edges, horizontals, true, state, [&](int, std::int32_t face) { return !exterior[face]; }, &out);
+}
+
+}  // namespace vraster::detail
