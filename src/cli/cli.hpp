@@ -11,6 +11,9 @@ struct UsageError {
   std::string message;
 };
 
+/// `vraster fill-rules IN.svg -o SHEET.png [--winding] [--aa MODE] [--panel PX]`.
+int run_fill_rules(int argc, char** argv);
+
 /// The embedded demo scene (SVG text).
 std::string_view demo_svg();
 

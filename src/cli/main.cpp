@@ -22,10 +22,12 @@ namespace {
 
 constexpr const char* kUsage =
     "usage:\n"
-    "  vraster render IN.svg -o OUT.png [--aa none|analytic] [--rule RULE] [--tolerance T]\n"
+    "  vraster render IN.svg -o OUT.png [--aa MODE] [--rule RULE] [--tolerance T]\n"
     "                 [--depth 8|16] [--background COLOR|transparent] [--bench N]\n"
+    "  vraster fill-rules IN.svg -o SHEET.png [--winding] [--aa MODE] [--panel PX]\n"
     "  vraster demo [-o FILE]\n"
-    "RULE: evenodd | nonzero | positive | negative | abs-geq-2 (overrides the file's fill-rule)\n";
+    "MODE: none | analytic | exact\n"
+    "RULE: evenodd | nonzero | nonexterior | positive | negative | abs-geq-2 (overrides the file's fill-rule)\n";
 
 struct RenderArgs {
   std::string input;
@@ -182,6 +184,7 @@ int main(int argc, char** argv) {
     const std::string_view command = argv[1];
     if (command == "render") return cli::run_render(argc, argv);
     if (command == "demo") return cli::run_demo(argc, argv);
+    if (command == "fill-rules") return cli::run_fill_rules(argc, argv);
     if (command == "--help" || command == "-h" || command == "help") {
       std::cout << cli::kUsage;
       return 0;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include "vraster/error.hpp"
@@ -36,11 +37,15 @@ void BasicImage<T>::clear(Color c) {
                    static_cast<T>(std::lround(std::clamp(static_cast<double>(c.g), 0.0, 1.0) * a * scale)),
                    static_cast<T>(std::lround(std::clamp(static_cast<double>(c.b), 0.0, 1.0) * a * scale)),
                    static_cast<T>(std::lround(a * scale))};
-  for (std::size_t i = 0; i < data.size(); i += 4) {
-    data[i] = px[0];
-    data[i + 1] = px[1];
-    data[i + 2] = px[2];
-    data[i + 3] = px[3];
+  if (px[0] == px[1] && px[1] == px[2] && px[2] == px[3] && sizeof(T) == 1) {
+    std::memset(data.data(), px[0], data.size());
+    return;
+  }
+  // Fill the first row, then copy it: whole-row copies are memcpy speed.
+  const std::size_t row = static_cast<std::size_t>(width) * 4;
+  for (std::size_t i = 0; i < row; i += 4) std::copy(px, px + 4, data.begin() + static_cast<std::ptrdiff_t>(i));
+  for (std::size_t y = 1; y < static_cast<std::size_t>(height); ++y) {
+    std::copy(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(row), data.begin() + static_cast<std::ptrdiff_t>(y * row));
   }
 }
 

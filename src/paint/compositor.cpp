@@ -20,6 +20,27 @@ inline std::uint32_t scale8(std::uint32_t px, std::uint32_t f) {
 
 inline std::uint32_t over8(std::uint32_t src, std::uint32_t dst) { return src + scale8(dst, 255u - (src >> 24)); }
 
+// The hot loops, compiled twice: for AVX2 and for any x86-64, picked at load time (GCC function multiversioning).
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define VRASTER_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define VRASTER_CLONES
+#endif
+
+// Source-over of one premultiplied colour on n pixels.
+VRASTER_CLONES void blend_span8(std::uint32_t* px, int n, std::uint32_t src) {
+  const std::uint32_t inv = 255u - (src >> 24);
+  for (int i = 0; i < n; ++i) px[i] = src + scale8(px[i], inv);
+}
+
+// Source-over of a colour scaled by per-pixel coverage.
+VRASTER_CLONES void blend_row8(std::uint32_t* px, int n, const float* coverage, std::uint32_t color) {
+  for (int i = 0; i < n; ++i) {
+    const auto cov = static_cast<std::uint32_t>(coverage[i] * 255.f + 0.5f);
+    px[i] = over8(scale8(color, cov), px[i]);
+  }
+}
+
 inline std::uint64_t mul_div16(std::uint64_t a, std::uint64_t b) { return (a * b + 32767) / 65535; }
 
 }  // namespace
@@ -64,9 +85,7 @@ void SolidCompositor<T>::span8(int y, int x0, int x1, float coverage) {
     std::fill(px, px + n, color);
     return;
   }
-  const std::uint32_t src = cov == 255 ? color : scale8(color, cov);
-  const std::uint32_t inv = 255u - (src >> 24);
-  for (int i = 0; i < n; ++i) px[i] = src + scale8(px[i], inv);
+  blend_span8(px, n, cov == 255 ? color : scale8(color, cov));
 }
 
 template <class T>
@@ -74,11 +93,7 @@ void SolidCompositor<T>::row8(int y, int x0, int x1, const float* coverage) {
   if (premul_[3] == 0) return;
   const std::uint32_t color = static_cast<std::uint32_t>(premul_[0] | premul_[1] << 8 | premul_[2] << 16 | premul_[3] << 24);
   auto* px = reinterpret_cast<std::uint32_t*>(static_cast<void*>(image_.pixel(x0, y)));
-  const int n = x1 - x0;
-  for (int i = 0; i < n; ++i) {
-    const auto cov = static_cast<std::uint32_t>(coverage[i] * 255.f + 0.5f);
-    px[i] = over8(scale8(color, cov), px[i]);
-  }
+  blend_row8(px, x1 - x0, coverage, color);
 }
 
 template <class T>

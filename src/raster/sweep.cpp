@@ -42,7 +42,8 @@ inline float coverage_of(double s) {
   } else if constexpr (R == FillRule::AbsGeq2) {
     return static_cast<float>(std::clamp(std::abs(s) - 1.0, 0.0, 1.0));
   } else {
-    return static_cast<float>(std::min(std::abs(s), 1.0));
+    const double a = std::abs(s);
+    return static_cast<float>(a < 1.0 ? a : 1.0);
   }
 }
 
