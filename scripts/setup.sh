@@ -13,6 +13,11 @@ packages=(
   libharfbuzz-bin                      # hb-view / hb-shape, references for text tests
 )
 
+# The fuzz targets need clang and its libFuzzer runtime.
+if [[ ${1:-} == --fuzz ]]; then
+  packages+=(clang libclang-rt-14-dev)
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

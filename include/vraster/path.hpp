@@ -15,7 +15,8 @@ enum class Verb : std::uint8_t { Move, Line, Quad, Cubic, Close };
 /// A vector path in user space.
 ///
 /// Guarantees (checked as the path is built, trusted by every later stage):
-///  - every coordinate is finite: a NaN or infinite argument throws vraster::Error and leaves the path as it was;
+///  - every coordinate is finite: a NaN or infinite argument (or an arc, shape or transform whose result is not
+///    finite) throws vraster::Error and leaves the path exactly as it was;
 ///  - every contour starts with Move (a drawing command with no open contour starts one at the current point,
 ///    which after close() is the start of the closed contour, as in SVG);
 ///  - arcs are stored as cubic segments of at most 30 degrees each (relative radial error below 4e-7 of the radius).
@@ -62,8 +63,18 @@ class Path {
   Point current_point() const { return current_; }
 
  private:
+  struct Snapshot {
+    std::size_t verbs, points;
+    Point current, contour_start;
+    bool contour_open;
+  };
+  Snapshot snapshot() const { return {verbs_.size(), points_.size(), current_, contour_start_, contour_open_}; }
+  void restore(const Snapshot& s);
+  /// Runs `build` (several builder calls) all or nothing: on an exception the path is restored, then it rethrows.
+  template <class F>
+  Path& atomically(F&& build);
   void ensure_contour();
-  void arc_segments(Point center, double rx, double ry, double phi, double theta1, double dtheta);
+  void arc_segments(double rx, double ry, double phi, double theta1, double dtheta);
 
   std::vector<Verb> verbs_;
   std::vector<Point> points_;

@@ -16,6 +16,9 @@
 #include "cli/cli.hpp"
 #include "svg_subset/svg.hpp"
 #include "vraster/vraster.hpp"
+#if VRASTER_WITH_TEXT
+#include "vraster_text/cli.hpp"
+#endif
 
 namespace vraster::cli {
 namespace {
@@ -25,6 +28,10 @@ constexpr const char* kUsage =
     "  vraster render IN.svg -o OUT.png [--aa MODE] [--rule RULE] [--tolerance T]\n"
     "                 [--depth 8|16] [--background COLOR|transparent] [--bench N]\n"
     "  vraster fill-rules IN.svg -o SHEET.png [--winding] [--aa MODE] [--panel PX]\n"
+    "  vraster text \"TEXT\" -o OUT.png [--font FILE]... [--face-index N] [--size PX] [--width W]\n"
+    "               [--align left|center|right] [--line-height PX] [--color C] [--background C] [--aa MODE]\n"
+    "               [--features F] [--lang L] [--script S] [--dir auto|ltr|rtl] [--hinting none|light]\n"
+    "               [--margin PX]\n"
     "  vraster demo [-o FILE]\n"
     "MODE: none | analytic | exact\n"
     "RULE: evenodd | nonzero | nonexterior | positive | negative | abs-geq-2 (overrides the file's fill-rule)\n";
@@ -185,6 +192,9 @@ int main(int argc, char** argv) {
     if (command == "render") return cli::run_render(argc, argv);
     if (command == "demo") return cli::run_demo(argc, argv);
     if (command == "fill-rules") return cli::run_fill_rules(argc, argv);
+#if VRASTER_WITH_TEXT
+    if (command == "text") return text::run_text_command(argc, argv);
+#endif
     if (command == "--help" || command == "-h" || command == "help") {
       std::cout << cli::kUsage;
       return 0;

@@ -80,6 +80,26 @@ Point eval_cubic(Point p0, Point p1, Point p2, Point p3, double t) {
 
 }  // namespace
 
+void Path::restore(const Snapshot& s) {
+  verbs_.resize(s.verbs);
+  points_.resize(s.points);
+  current_ = s.current;
+  contour_start_ = s.contour_start;
+  contour_open_ = s.contour_open;
+}
+
+template <class F>
+Path& Path::atomically(F&& build) {
+  const Snapshot before = snapshot();
+  try {
+    build();
+  } catch (...) {
+    restore(before);
+    throw;
+  }
+  return *this;
+}
+
 void Path::ensure_contour() {
   if (!contour_open_) {
     verbs_.push_back(Verb::Move);
@@ -145,23 +165,27 @@ Path& Path::close() {
   return *this;
 }
 
-// Appends cubics approximating the ellipse arc from angle theta1 over dtheta (radians; the ellipse is centred at
-// `center` with radii rx, ry and its x axis rotated by phi radians).
-void Path::arc_segments(Point center, double rx, double ry, double phi, double theta1, double dtheta) {
+// Appends cubics approximating the ellipse arc that starts at the current point (angle theta1) and turns by dtheta
+// (radians) on the ellipse with radii rx, ry whose x axis is rotated by phi. Points are computed relative to the
+// start point with cos t - cos t1 = -2 sin((t + t1) / 2) sin((t - t1) / 2) (and likewise for sine), which keeps
+// arcs of huge radius precise: centre + radius * cos t would cancel catastrophically there.
+void Path::arc_segments(double rx, double ry, double phi, double theta1, double dtheta) {
   const int n = std::max(1, static_cast<int>(std::ceil(std::abs(dtheta) / kMaxArcStep - 1e-9)));
   const double step = dtheta / n;
   const double k = 4.0 / 3.0 * std::tan(step / 4);
   const double cs = std::cos(phi), sn = std::sin(phi);
+  const Point start = current_;
   auto point_at = [&](double t) {
-    const double x = rx * std::cos(t), y = ry * std::sin(t);
-    return Point{center.x + cs * x - sn * y, center.y + sn * x + cs * y};
+    const double half = std::sin((t - theta1) / 2), mid = (t + theta1) / 2;
+    const double x = -2 * rx * std::sin(mid) * half, y = 2 * ry * std::cos(mid) * half;
+    return Point{start.x + cs * x - sn * y, start.y + sn * x + cs * y};
   };
   auto tangent_at = [&](double t) {
     const double x = -rx * std::sin(t), y = ry * std::cos(t);
     return Point{cs * x - sn * y, sn * x + cs * y};
   };
   double t = theta1;
-  Point from = current_;
+  Point from = start;
   for (int i = 0; i < n; ++i) {
     const double t2 = (i + 1 == n) ? theta1 + dtheta : t + step;
     const Point to = point_at(t2);
@@ -176,49 +200,59 @@ Path& Path::arc_to(double rx, double ry, double x_rotation_degrees, bool large_a
   check_finite(ry, "arc_to radius");
   check_finite(x_rotation_degrees, "arc_to rotation");
   check_finite(p, "arc_to");
-  ensure_contour();
-  const Point p1 = current_;
-  if (p1 == p) return *this;  // SVG: an arc to the current point is omitted
-  rx = std::abs(rx);
-  ry = std::abs(ry);
-  if (rx == 0 || ry == 0) return line_to(p);
-
-  // SVG 1.1 implementation notes F.6.5: endpoint to centre parameterisation.
-  const double phi = std::fmod(x_rotation_degrees, 360.0) * kPi / 180.0;
-  const double cs = std::cos(phi), sn = std::sin(phi);
-  const double hx = (p1.x - p.x) / 2, hy = (p1.y - p.y) / 2;
-  const double x1p = cs * hx + sn * hy;
-  const double y1p = -sn * hx + cs * hy;
-  // F.6.6: scale the radii up when they cannot reach the end point.
-  const double lambda = (x1p * x1p) / (rx * rx) + (y1p * y1p) / (ry * ry);
-  if (lambda > 1) {
-    const double s = std::sqrt(lambda);
-    rx *= s;
-    ry *= s;
-  }
-  const double rx2 = rx * rx, ry2 = ry * ry;
-  const double num = rx2 * ry2 - rx2 * y1p * y1p - ry2 * x1p * x1p;
-  const double den = rx2 * y1p * y1p + ry2 * x1p * x1p;
-  double coef = (den > 0 && num > 0) ? std::sqrt(num / den) : 0.0;
-  if (large_arc == sweep) coef = -coef;
-  const double cxp = coef * rx * y1p / ry;
-  const double cyp = -coef * ry * x1p / rx;
-  const Point center{cs * cxp - sn * cyp + (p1.x + p.x) / 2, sn * cxp + cs * cyp + (p1.y + p.y) / 2};
-  const Point u{(x1p - cxp) / rx, (y1p - cyp) / ry};
-  const Point v{(-x1p - cxp) / rx, (-y1p - cyp) / ry};
-  const double theta1 = vector_angle({1, 0}, u);
-  double dtheta = vector_angle(u, v);
-  if (!sweep && dtheta > 0) dtheta -= 2 * kPi;
-  if (sweep && dtheta < 0) dtheta += 2 * kPi;
-  if (!std::isfinite(center.x) || !std::isfinite(center.y) || !std::isfinite(dtheta)) return line_to(p);
-  arc_segments(center, rx, ry, phi, theta1, dtheta);
-  // Land exactly on the requested end point (the cosine/sine round trip is off by an ulp or so).
-  points_.back() = p;
-  current_ = p;
-  return *this;
+  return atomically([&] {
+    ensure_contour();
+    const Point p1 = current_;
+    if (p1 == p) return;  // SVG: an arc to the current point is omitted
+    rx = std::abs(rx);
+    ry = std::abs(ry);
+    if (rx == 0 || ry == 0) {
+      line_to(p);
+      return;
+    }
+    // SVG 1.1 implementation notes F.6.5: endpoint to centre parameterisation, written with the ratios
+    // u = (x1', y1') / (rx, ry) so that no product of two radii can overflow.
+    const double phi = std::fmod(x_rotation_degrees, 360.0) * kPi / 180.0;
+    const double cs = std::cos(phi), sn = std::sin(phi);
+    const double hx = (p1.x - p.x) / 2, hy = (p1.y - p.y) / 2;
+    const double x1p = cs * hx + sn * hy;
+    const double y1p = -sn * hx + cs * hy;
+    double ux = x1p / rx, uy = y1p / ry;
+    // F.6.6: scale the radii up when they cannot reach the end point.
+    const double lambda = ux * ux + uy * uy;
+    if (lambda > 1) {
+      const double s = std::sqrt(lambda);
+      rx *= s;
+      ry *= s;
+      ux /= s;
+      uy /= s;
+    }
+    // coef = sqrt((1 - |u|^2) / |u|^2), with |u| from hypot so that huge radii (|u|^2 underflowing) still work.
+    const double u_len = std::hypot(ux, uy);
+    double coef = (u_len > 0 && u_len < 1) ? std::sqrt(1 - u_len * u_len) / u_len : 0.0;
+    if (large_arc == sweep) coef = -coef;
+    const double cxp = coef * rx * uy;
+    const double cyp = -coef * ry * ux;
+    const Point u{ux - coef * uy, uy + coef * ux};
+    const Point v{-ux - coef * uy, -uy + coef * ux};
+    const double theta1 = vector_angle({1, 0}, u);
+    double dtheta = vector_angle(u, v);
+    if (!sweep && dtheta > 0) dtheta -= 2 * kPi;
+    if (sweep && dtheta < 0) dtheta += 2 * kPi;
+    if (!std::isfinite(cxp) || !std::isfinite(cyp) || !std::isfinite(dtheta)) {
+      line_to(p);
+      return;
+    }
+    arc_segments(rx, ry, phi, theta1, dtheta);
+    // Land exactly on the requested end point (the cosine/sine round trip is off by an ulp or so).
+    points_.back() = p;
+    current_ = p;
+  });
 }
 
 Path& Path::add_rect(const Rect& r) {
+  check_finite(Point{r.x0, r.y0}, "add_rect");
+  check_finite(Point{r.x1, r.y1}, "add_rect");
   move_to({r.x0, r.y0});
   line_to({r.x1, r.y0});
   line_to({r.x1, r.y1});
@@ -227,21 +261,25 @@ Path& Path::add_rect(const Rect& r) {
 }
 
 Path& Path::add_round_rect(const Rect& r, double rx, double ry) {
+  check_finite(Point{r.x0, r.y0}, "add_round_rect");
+  check_finite(Point{r.x1, r.y1}, "add_round_rect");
   check_finite(rx, "add_round_rect");
   check_finite(ry, "add_round_rect");
   rx = std::min(std::abs(rx), std::abs(r.width()) / 2);
   ry = std::min(std::abs(ry), std::abs(r.height()) / 2);
-  if (rx == 0 || ry == 0) return add_rect(r);
-  move_to({r.x0 + rx, r.y0});
-  line_to({r.x1 - rx, r.y0});
-  arc_to(rx, ry, 0, false, true, {r.x1, r.y0 + ry});
-  line_to({r.x1, r.y1 - ry});
-  arc_to(rx, ry, 0, false, true, {r.x1 - rx, r.y1});
-  line_to({r.x0 + rx, r.y1});
-  arc_to(rx, ry, 0, false, true, {r.x0, r.y1 - ry});
-  line_to({r.x0, r.y0 + ry});
-  arc_to(rx, ry, 0, false, true, {r.x0 + rx, r.y0});
-  return close();
+  if (!(rx > 0) || !(ry > 0)) return add_rect(r);
+  return atomically([&] {
+    move_to({r.x0 + rx, r.y0});
+    line_to({r.x1 - rx, r.y0});
+    arc_to(rx, ry, 0, false, true, {r.x1, r.y0 + ry});
+    line_to({r.x1, r.y1 - ry});
+    arc_to(rx, ry, 0, false, true, {r.x1 - rx, r.y1});
+    line_to({r.x0 + rx, r.y1});
+    arc_to(rx, ry, 0, false, true, {r.x0, r.y1 - ry});
+    line_to({r.x0, r.y0 + ry});
+    arc_to(rx, ry, 0, false, true, {r.x0 + rx, r.y0});
+    close();
+  });
 }
 
 Path& Path::add_ellipse(Point c, double rx, double ry) {
@@ -250,10 +288,12 @@ Path& Path::add_ellipse(Point c, double rx, double ry) {
   check_finite(ry, "add_ellipse");
   rx = std::abs(rx);
   ry = std::abs(ry);
-  move_to({c.x + rx, c.y});
-  arc_segments(c, rx, ry, 0, 0, 2 * kPi);
-  points_.back() = Point{c.x + rx, c.y};
-  return close();
+  return atomically([&] {
+    move_to({c.x + rx, c.y});
+    arc_segments(rx, ry, 0, 0, 2 * kPi);
+    points_.back() = Point{c.x + rx, c.y};
+    close();
+  });
 }
 
 Path& Path::add_polygon(std::span<const Point> pts, bool closed) {
@@ -266,6 +306,7 @@ Path& Path::add_polygon(std::span<const Point> pts, bool closed) {
 }
 
 Path& Path::add_path(const Path& other) {
+  // Every point of `other` is already finite: nothing here can throw half way.
   std::size_t i = 0;
   for (Verb v : other.verbs_) {
     switch (v) {
@@ -280,12 +321,17 @@ Path& Path::add_path(const Path& other) {
 }
 
 void Path::transform(const Affine& m) {
-  for (Point& p : points_) {
-    p = m.apply(p);
-    if (!is_finite(p)) throw Error("path: transform produced a non-finite coordinate");
+  // Map into a copy first: a non-finite result must leave the path untouched.
+  std::vector<Point> mapped(points_.size());
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    mapped[i] = m.apply(points_[i]);
+    if (!is_finite(mapped[i])) throw Error("path: transform produced a non-finite coordinate");
   }
-  current_ = m.apply(current_);
-  contour_start_ = m.apply(contour_start_);
+  const Point current = m.apply(current_), start = m.apply(contour_start_);
+  if (!is_finite(current) || !is_finite(start)) throw Error("path: transform produced a non-finite coordinate");
+  points_.swap(mapped);
+  current_ = current;
+  contour_start_ = start;
 }
 
 Path Path::transformed(const Affine& m) const {

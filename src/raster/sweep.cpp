@@ -29,21 +29,28 @@ bool inside(FillRule rule, int w) {
 
 // Coverage from the accumulated signed area s (the winding number, averaged over the pixel).
 // Exact where one pixel sees a single winding transition; an approximation where edges cross inside a pixel.
+// Coverage this close to 0 or 1 is 0 or 1: round-off left by edges that cancel must not become coverage (it would
+// cost spans and break exact invariance under translation). Far below the area of a 1e-6 x 1e-6 px shape.
+constexpr double kSnap = 0x1p-43;
+
+inline float snapped(double c) { return static_cast<float>(c < kSnap ? 0.0 : (c > 1.0 - kSnap ? 1.0 : c)); }
+
 template <FillRule R>
 inline float coverage_of(double s) {
   if constexpr (R == FillRule::EvenOdd) {
+    // Fold |s| into [0, 2) (rarely needed: windings beyond 2 inside one pixel), then mirror (1, 2) onto (1, 0).
     double a = std::abs(s);
-    a -= 2.0 * std::floor(a * 0.5);
-    return static_cast<float>(a > 1.0 ? 2.0 - a : a);
+    if (a >= 2.0) a -= 2.0 * std::floor(a * 0.5);
+    return snapped(a > 1.0 ? 2.0 - a : a);
   } else if constexpr (R == FillRule::Positive) {
-    return static_cast<float>(std::clamp(s, 0.0, 1.0));
+    return snapped(std::clamp(s, 0.0, 1.0));
   } else if constexpr (R == FillRule::Negative) {
-    return static_cast<float>(std::clamp(-s, 0.0, 1.0));
+    return snapped(std::clamp(-s, 0.0, 1.0));
   } else if constexpr (R == FillRule::AbsGeq2) {
-    return static_cast<float>(std::clamp(std::abs(s) - 1.0, 0.0, 1.0));
+    return snapped(std::clamp(std::abs(s) - 1.0, 0.0, 1.0));
   } else {
     const double a = std::abs(s);
-    return static_cast<float>(a < 1.0 ? a : 1.0);
+    return snapped(a < 1.0 ? a : 1.0);
   }
 }
 
@@ -120,47 +127,68 @@ inline int next_clear(const std::uint64_t* bits, int from, int limit) {
   return std::min((w << 6) + std::countr_zero(word), limit);
 }
 
-// Sweeps one accumulated row: running sum over touched cells, constant spans over untouched runs.
+// Untouched stretches shorter than this inside a run of touched cells are written into the run's coverage instead
+// of being a span of their own: one compositor call covers several edges.
+constexpr int kMergeGap = 24;
+
+// Sweeps one accumulated row: a running sum over touched cells, constant spans over long untouched stretches.
 // Leaves the accumulation cells and the touched bits zero.
 template <FillRule R>
-void resolve_row(int y, int width, int x_lo, int x_hi, double* acc, std::uint64_t* bits, float* cov,
+[[gnu::always_inline]] inline void resolve_row(int y, int width, int x_lo, int x_hi, double* acc, std::uint64_t* bits, float* cov,
                  CoverageSink& sink) {
   double sum = 0;
   int x = x_lo;
+  int run = -1;  // first pixel of the open coverage run (cov[i - run] is pixel i), -1 when none is open
   const int limit = x_hi + 1;
+  auto flush = [&](int end) {
+    end = std::min(end, width);
+    int a = run, b = end;
+    while (a < b && cov[a - run] == 0) ++a;
+    while (b > a && cov[b - 1 - run] == 0) --b;
+    if (b - a == 1) {
+      sink.span(y, a, b, cov[a - run]);
+    } else if (b > a) {
+      sink.row(y, a, b, cov + (a - run));
+    }
+    run = -1;
+  };
   for (;;) {
     const int t = x >= limit ? limit : next_set(bits, x, limit);
-    // Untouched cells keep the running sum; past the last touched cell that holds to the end of the row (edges
-    // right of the image were dropped, so the sum need not return to 0 there).
-    const int run_end = t >= limit ? width : std::min(t, width);
-    if (run_end > x) {
+    // Untouched cells [x, gap_end) keep the running sum; past the last touched cell that holds to the end of the
+    // row (edges right of the image were dropped, so the sum need not return to 0 there).
+    const int gap_end = t >= limit ? width : std::min(t, width);
+    if (gap_end > x) {
       const float c = coverage_of<R>(sum);
-      if (c > 0) sink.span(y, x, run_end, c);
+      if (run >= 0 && t < limit && t - x <= kMergeGap && t <= width) {
+        std::fill(cov + (x - run), cov + (t - run), c);
+      } else {
+        if (run >= 0) flush(x);
+        if (c > 0) sink.span(y, x, gap_end, c);
+      }
     }
     if (t >= limit) break;
     const int e = next_clear(bits, t, limit);
+    if (run < 0) run = t;
     for (int i = t; i < e; ++i) {
       sum += acc[i];
       acc[i] = 0;
-      cov[i - t] = coverage_of<R>(sum);
-    }
-    if (t < width) {
-      int a = 0, b = std::min(e, width) - t;
-      while (a < b && cov[a] == 0) ++a;
-      while (b > a && cov[b - 1] == 0) --b;
-      if (b - a == 1) {
-        sink.span(y, t + a, t + b, cov[a]);
-      } else if (b > a) {
-        sink.row(y, t + a, t + b, cov + a);
-      }
+      cov[i - run] = coverage_of<R>(sum);
     }
     x = e;
   }
+  if (run >= 0) flush(x);
   for (int w = x_lo >> 6; w <= (x_hi >> 6); ++w) bits[w] = 0;
 }
 
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define VRASTER_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define VRASTER_CLONES
+#endif
+
+// The row loop, compiled for AVX2 and for any x86-64 (picked at load time); no FMA, so both give the same bits.
 template <FillRule R>
-void sweep_analytic_rows(const std::vector<Edge>& edges, const std::vector<std::uint32_t>& order,
+VRASTER_CLONES void sweep_analytic_rows(const std::vector<Edge>& edges, const std::vector<std::uint32_t>& order,
                          const std::vector<std::uint32_t>& bucket_start, std::vector<std::uint32_t>& active,
                          int y_min, int y_max, int width, double* acc, std::uint64_t* bits, float* cov,
                          CoverageSink& sink) {

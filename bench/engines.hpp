@@ -1,0 +1,43 @@
+// vraster_bench: the engines compared. Each one builds its own paths from a parsed Document before timing;
+// a timed frame is clear to white + fill every item in file order (source-over, antialiased) + flush.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "svg_subset/svg.hpp"
+#include "vraster/image.hpp"
+
+namespace bench {
+
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  virtual const char* name() const = 0;
+  /// Builds the engine's device-space paths and its target for `doc` (not timed). Throws on unusable input.
+  virtual void prepare(const vraster::svg::Document& doc) = 0;
+  /// Renders one frame. Returns false when the engine cannot render this scene (reason in error()).
+  virtual bool frame() = 0;
+  /// The last frame as 8-bit premultiplied RGBA.
+  virtual vraster::Image image() const = 0;
+  virtual std::string error() const { return {}; }
+  /// Library version for the report.
+  virtual std::string version() const = 0;
+};
+
+std::unique_ptr<Engine> make_vraster_engine();
+std::unique_ptr<Engine> make_cairo_engine();
+std::unique_ptr<Engine> make_freetype_engine();
+
+// The 8-bit source-over math vraster's compositor uses (one uint32 pixel, R in the low byte, two channels per
+// multiply): scale8(px, f) = px * f / 255 per channel, rounded to nearest.
+inline std::uint32_t scale8(std::uint32_t px, std::uint32_t f) {
+  std::uint32_t rb = (px & 0x00FF00FFu) * f + 0x00800080u;
+  rb = ((rb + ((rb >> 8) & 0x00FF00FFu)) >> 8) & 0x00FF00FFu;
+  std::uint32_t ag = ((px >> 8) & 0x00FF00FFu) * f + 0x00800080u;
+  ag = ((ag + ((ag >> 8) & 0x00FF00FFu)) >> 8) & 0x00FF00FFu;
+  return rb | (ag << 8);
+}
+
+}  // namespace bench

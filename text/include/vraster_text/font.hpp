@@ -1,0 +1,111 @@
+// vraster_text: fonts loaded through FreeType (TrueType, OpenType CFF, collections), their glyph outlines as
+// vraster::Path, and the list of fonts tried in turn for characters the first one lacks.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "vraster/geometry.hpp"
+#include "vraster/path.hpp"
+
+namespace vraster::text {
+
+/// Largest accepted font size in pixels (per em). Bigger sizes, zero, negative or non-finite sizes throw
+/// vraster::Error: a glyph at 4096 px is already larger than most images; nothing sensible lies beyond.
+inline constexpr double kMaxFontSize = 4096.0;
+
+/// Throws vraster::Error naming the problem unless 0 < size <= kMaxFontSize.
+void check_font_size(double size);
+
+/// FreeType hinting of glyph outlines. Unhinted outlines are the font's own curves scaled in doubles.
+enum class Hinting : std::uint8_t {
+  None,   ///< FT_LOAD_NO_HINTING: exact scaled outlines (default)
+  Light,  ///< FreeType's light auto-hinting (FT_LOAD_TARGET_LIGHT): vertical snapping only, same advances
+};
+
+/// Vertical metrics of a font at one size, in pixels. y grows downwards, so the ascender is negative.
+struct FontMetrics {
+  double ascender = 0;    ///< baseline to the top of the em box (negative: above the baseline)
+  double descender = 0;   ///< baseline to the bottom (positive: below)
+  double line_gap = 0;    ///< extra space between lines
+  double line_height() const { return descender - ascender + line_gap; }
+};
+
+/// One font face. Loading reads the whole file into memory (FreeType and HarfBuzz share those bytes).
+///
+/// A Font keeps a FreeType face and caches; it is not safe to use one Font from two threads at once. Load one per
+/// thread (the bytes of the embedded default font are shared, not copied).
+class Font {
+ public:
+  /// Loads face `face_index` of a font file (.ttf, .otf, .ttc/.otc collections). Throws vraster::Error naming the
+  /// file when it is missing, unreadable, not a font, or has no face with that index.
+  static std::shared_ptr<Font> load_file(const std::string& path, int face_index = 0);
+  /// Loads a font from bytes in memory (copied). `name` is used in error messages.
+  static std::shared_ptr<Font> load_memory(std::vector<std::uint8_t> bytes, int face_index = 0,
+                                           const std::string& name = "<memory>");
+  /// The default font compiled into the library: Noto Sans Regular (SIL Open Font License 1.1, text/fonts/).
+  static std::shared_ptr<Font> load_default();
+  /// The bytes of the embedded default font (no copy).
+  static std::span<const std::uint8_t> default_font_data();
+
+  ~Font();
+  Font(const Font&) = delete;
+  Font& operator=(const Font&) = delete;
+
+  /// A number unique to this Font object within the process (cache keys use it).
+  std::uint64_t id() const;
+  /// The file name (or the name given for memory fonts).
+  const std::string& name() const;
+  /// The family and style names the font declares.
+  std::string family_name() const;
+  std::string style_name() const;
+  int units_per_em() const;
+  int glyph_count() const;
+  int face_count() const;  ///< faces in the file (collections hold more than one)
+  bool has_outlines() const;
+
+  /// The glyph for a Unicode code point, 0 (.notdef) when the font has none.
+  std::uint32_t glyph_index(char32_t codepoint) const;
+  bool has_glyph(char32_t codepoint) const { return glyph_index(codepoint) != 0; }
+
+  FontMetrics metrics(double size) const;
+  /// Horizontal advance of a glyph at `size` pixels (unhinted).
+  double advance(std::uint32_t glyph, double size) const;
+
+  /// The unhinted outline of a glyph in font units, y pointing down (the font's y negated), origin at the pen
+  /// position on the baseline. Cached per glyph. Glyphs without outlines (spaces, bitmap-only glyphs) are empty.
+  const Path& outline_units(std::uint32_t glyph) const;
+  /// The outline at `size` pixels per em, y down, origin at the pen position. Hinting::None scales outline_units(); Hinting::Light loads FreeType's light-hinted outline at
+  /// that size (26.6 fixed point). Throws vraster::Error for a bad size.
+  Path outline(std::uint32_t glyph, double size, Hinting hinting = Hinting::None) const;
+
+  /// Internals shared with the shaper and the renderer (FreeType and HarfBuzz objects).
+  struct Impl;
+  Impl& impl() const { return *impl_; }
+
+ private:
+  explicit Font(std::unique_ptr<Impl> impl);
+  static std::shared_ptr<Font> open(std::unique_ptr<Impl> impl, int face_index);
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The fonts tried in order for each character: the first one that has a glyph for it is used (marks and
+/// joiners stay with the font of the character before them). Characters no font has get the first font's .notdef.
+struct FontList {
+  std::vector<std::shared_ptr<Font>> fonts;
+
+  FontList() = default;
+  explicit FontList(std::shared_ptr<Font> primary) { fonts.push_back(std::move(primary)); }
+  FontList& add(std::shared_ptr<Font> fallback) {
+    fonts.push_back(std::move(fallback));
+    return *this;
+  }
+  /// The embedded default font alone.
+  static FontList default_list() { return FontList(Font::load_default()); }
+  bool empty() const { return fonts.empty(); }
+};
+
+}  // namespace vraster::text

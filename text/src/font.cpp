@@ -1,0 +1,216 @@
+// Fonts: FreeType faces (outlines) and HarfBuzz fonts (shaping) over the same bytes.
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "font_impl.hpp"
+#include FT_OUTLINE_H
+#include "vraster/error.hpp"
+
+namespace vraster::text {
+namespace {
+
+std::atomic<std::uint64_t> next_font_id{1};
+
+std::string ft_error_text(FT_Error e) {
+  switch (e) {
+    case FT_Err_Unknown_File_Format: return "not a font file FreeType knows (unknown file format)";
+    case FT_Err_Invalid_File_Format: return "invalid or corrupt font data";
+    case FT_Err_Invalid_Argument: return "no face with that index";
+    case FT_Err_Invalid_Table: return "a font table is broken";
+    case FT_Err_Out_Of_Memory: return "out of memory";
+    default: break;
+  }
+  if (const char* s = FT_Error_String(e)) return s;
+  return "FreeType error " + std::to_string(e);
+}
+
+struct DecomposeState {
+  Path* path;
+  double sx, sy;
+  bool open = false;
+  Point at(const FT_Vector* v) const { return {static_cast<double>(v->x) * sx, -static_cast<double>(v->y) * sy}; }
+};
+
+int on_move(const FT_Vector* to, void* user) {
+  auto* s = static_cast<DecomposeState*>(user);
+  if (s->open) s->path->close();
+  s->path->move_to(s->at(to));
+  s->open = true;
+  return 0;
+}
+int on_line(const FT_Vector* to, void* user) {
+  auto* s = static_cast<DecomposeState*>(user);
+  s->path->line_to(s->at(to));
+  return 0;
+}
+int on_conic(const FT_Vector* control, const FT_Vector* to, void* user) {
+  auto* s = static_cast<DecomposeState*>(user);
+  s->path->quad_to(s->at(control), s->at(to));
+  return 0;
+}
+int on_cubic(const FT_Vector* c1, const FT_Vector* c2, const FT_Vector* to, void* user) {
+  auto* s = static_cast<DecomposeState*>(user);
+  s->path->cubic_to(s->at(c1), s->at(c2), s->at(to));
+  return 0;
+}
+
+}  // namespace
+
+void check_font_size(double size) {
+  if (!std::isfinite(size) || size <= 0) {
+    throw Error("font size must be a positive number of pixels (got " + std::to_string(size) + ")");
+  }
+  if (size > kMaxFontSize) {
+    throw Error("font size " + std::to_string(size) + " px is too large (at most " +
+                std::to_string(static_cast<int>(kMaxFontSize)) + " px)");
+  }
+}
+
+void decompose_outline(const FT_Outline& outline, double sx, double sy, Path& out) {
+  FT_Outline_Funcs funcs{};
+  funcs.move_to = on_move;
+  funcs.line_to = on_line;
+  funcs.conic_to = on_conic;
+  funcs.cubic_to = on_cubic;
+  DecomposeState state{&out, sx, sy};
+  FT_Outline copy = outline;
+  if (FT_Outline_Decompose(&copy, &funcs, &state) != 0) {
+    out.clear();  // a broken outline draws nothing rather than something half-made
+    return;
+  }
+  if (state.open) out.close();
+}
+
+Font::Impl::~Impl() {
+  if (hb) hb_font_destroy(hb);
+  if (face) FT_Done_Face(face);
+  if (library) FT_Done_FreeType(library);
+}
+
+bool Font::Impl::load(std::uint32_t glyph, FT_Int32 flags) {
+  if (glyph >= static_cast<std::uint32_t>(face->num_glyphs)) return false;
+  if (FT_Load_Glyph(face, glyph, flags) != 0) return false;
+  return face->glyph->format == FT_GLYPH_FORMAT_OUTLINE;
+}
+
+Font::Font(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Font::~Font() = default;
+
+std::shared_ptr<Font> Font::open(std::unique_ptr<Impl> impl, int face_index) {
+  if (face_index < 0 || face_index > 0xFFFF) {
+    throw Error("font '" + impl->name + "': face index " + std::to_string(face_index) + " is out of range");
+  }
+  if (FT_Init_FreeType(&impl->library) != 0) throw Error("font '" + impl->name + "': cannot start FreeType");
+  const FT_Error e = FT_New_Memory_Face(impl->library, impl->bytes.data(), static_cast<FT_Long>(impl->bytes.size()),
+                                        face_index, &impl->face);
+  if (e != 0) {
+    throw Error("font '" + impl->name + "' (face " + std::to_string(face_index) + "): " + ft_error_text(e));
+  }
+  if (impl->face->units_per_EM == 0 && FT_IS_SCALABLE(impl->face)) {
+    throw Error("font '" + impl->name + "': units per em is 0 (corrupt head table)");
+  }
+  hb_blob_t* blob = hb_blob_create(reinterpret_cast<const char*>(impl->bytes.data()),
+                                   static_cast<unsigned>(impl->bytes.size()), HB_MEMORY_MODE_READONLY, nullptr, nullptr);
+  hb_face_t* face = hb_face_create(blob, static_cast<unsigned>(face_index));
+  hb_blob_destroy(blob);
+  impl->hb = hb_font_create(face);
+  hb_face_destroy(face);
+  const int upem = impl->face->units_per_EM ? impl->face->units_per_EM : 1000;
+  hb_font_set_scale(impl->hb, upem, upem);
+  impl->id = next_font_id.fetch_add(1);
+  return std::shared_ptr<Font>(new Font(std::move(impl)));
+}
+
+std::shared_ptr<Font> Font::load_file(const std::string& path, int face_index) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw Error("font '" + path + "': is a directory, not a font file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error("font '" + path + "': cannot open the file");
+  auto impl = std::make_unique<Impl>();
+  impl->owned.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (in.bad()) throw Error("font '" + path + "': read error");
+  if (impl->owned.empty()) throw Error("font '" + path + "': the file is empty");
+  impl->bytes = impl->owned;
+  impl->name = path;
+  return open(std::move(impl), face_index);
+}
+
+std::shared_ptr<Font> Font::load_memory(std::vector<std::uint8_t> bytes, int face_index, const std::string& name) {
+  if (bytes.empty()) throw Error("font '" + name + "': no data");
+  auto impl = std::make_unique<Impl>();
+  impl->owned = std::move(bytes);
+  impl->bytes = impl->owned;
+  impl->name = name;
+  return open(std::move(impl), face_index);
+}
+
+std::shared_ptr<Font> Font::load_default() {
+  auto impl = std::make_unique<Impl>();
+  impl->bytes = default_font_data();
+  impl->name = "<default: Noto Sans Regular>";
+  return open(std::move(impl), 0);
+}
+
+std::uint64_t Font::id() const { return impl_->id; }
+const std::string& Font::name() const { return impl_->name; }
+std::string Font::family_name() const { return impl_->face->family_name ? impl_->face->family_name : ""; }
+std::string Font::style_name() const { return impl_->face->style_name ? impl_->face->style_name : ""; }
+int Font::units_per_em() const { return impl_->face->units_per_EM ? impl_->face->units_per_EM : 1000; }
+int Font::glyph_count() const { return static_cast<int>(impl_->face->num_glyphs); }
+int Font::face_count() const { return static_cast<int>(impl_->face->num_faces); }
+bool Font::has_outlines() const { return FT_IS_SCALABLE(impl_->face); }
+
+std::uint32_t Font::glyph_index(char32_t codepoint) const {
+  auto it = impl_->cmap.find(codepoint);
+  if (it != impl_->cmap.end()) return it->second;
+  hb_codepoint_t g = 0;
+  if (!hb_font_get_nominal_glyph(impl_->hb, codepoint, &g)) g = 0;
+  impl_->cmap.emplace(codepoint, g);
+  return g;
+}
+
+FontMetrics Font::metrics(double size) const {
+  check_font_size(size);
+  hb_font_extents_t ext{};
+  hb_font_get_h_extents(impl_->hb, &ext);
+  const double s = size / units_per_em();
+  return {-ext.ascender * s, -ext.descender * s, ext.line_gap * s};
+}
+
+double Font::advance(std::uint32_t glyph, double size) const {
+  return hb_font_get_glyph_h_advance(impl_->hb, glyph) * (size / units_per_em());
+}
+
+const Path& Font::outline_units(std::uint32_t glyph) const {
+  auto it = impl_->outlines.find(glyph);
+  if (it != impl_->outlines.end()) return it->second;
+  Path path;
+  if (impl_->load(glyph, FT_LOAD_NO_SCALE | FT_LOAD_NO_HINTING | FT_LOAD_NO_BITMAP)) {
+    decompose_outline(impl_->face->glyph->outline, 1.0, 1.0, path);
+  }
+  return impl_->outlines.emplace(glyph, std::move(path)).first->second;
+}
+
+Path Font::outline(std::uint32_t glyph, double size, Hinting hinting) const {
+  check_font_size(size);
+  if (hinting == Hinting::None || !has_outlines()) {
+    return outline_units(glyph).transformed(Affine::scale(size / units_per_em()));
+  }
+  Impl& im = *impl_;
+  if (im.sized_at != size) {
+    if (FT_Set_Char_Size(im.face, 0, static_cast<FT_F26Dot6>(std::lround(size * 64)), 72, 72) != 0) {
+      throw Error("font '" + im.name + "': FreeType cannot set size " + std::to_string(size));
+    }
+    im.sized_at = size;
+  }
+  Path path;
+  if (im.load(glyph, FT_LOAD_TARGET_LIGHT | FT_LOAD_NO_BITMAP)) {
+    decompose_outline(im.face->glyph->outline, 1.0 / 64, 1.0 / 64, path);
+  }
+  return path;
+}
+
+}  // namespace vraster::text
