@@ -1,0 +1,279 @@
+// Hairlines (1-device-pixel lines: Bresenham, DDA, Wu, analytic) and the stroke entry point.
+//
+//   stroke_path: width in device pixels >= 1 -> stroke_to_path (user space) -> transform -> non-zero fill;
+//                thinner -> dashes in user space -> hairlines with alpha scaled by the width (never vanishes).
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <type_traits>
+
+#include "stroke/internal.hpp"
+#include "vraster/lines.hpp"
+#include "vraster/paint.hpp"
+#include "vraster/stroke.hpp"
+
+namespace vraster {
+namespace {
+
+constexpr double kHairlineTolerance = 0.1;
+
+// The pixel containing a device point (callers keep coordinates well inside the int range).
+IPoint pixel_of(Point p) { return {static_cast<int>(std::floor(p.x)), static_cast<int>(std::floor(p.y))}; }
+
+// Aliased hairlines of one polyline (Bresenham, or DDA when `dda`): every segment half-open, so each joint is
+// drawn once; an open polyline then draws its last pixel. plot(x, y) gets canvas pixels only.
+template <class Plot>
+void walk_aliased(const StrokePolyline& pl, int width, int height, bool dda, Plot&& plot) {
+  const double w = width, h = height;
+  // Segments are clipped (in floating point) to a rectangle with a wide margin before rounding: far endpoints
+  // never overflow an int, and the margin keeps the clipped direction within 1e-6 of the original.
+  const Rect safe{-1e6, -1e6, w + 1e6, h + 1e6};
+  const std::size_t n = pl.points.size();
+  if (n == 1) {
+    const Point p = pl.points[0];
+    if (p.x >= 0 && p.x < w && p.y >= 0 && p.y < h) plot(static_cast<int>(p.x), static_cast<int>(p.y));
+    return;
+  }
+  const std::size_t segs = pl.closed ? n : n - 1;
+  for (std::size_t i = 0; i < segs; ++i) {
+    Point a = pl.points[i], b = pl.points[(i + 1) % n];
+    const bool end_inside = safe.x0 <= b.x && b.x <= safe.x1 && safe.y0 <= b.y && b.y <= safe.y1;
+    if (!clip_segment(a, b, safe)) continue;
+    const IPoint pa = pixel_of(a), pb = pixel_of(b);
+    if (pa == pb) continue;  // the joint pixel belongs to the next segment (or the final plot below)
+    const LineEnd end = end_inside ? LineEnd::HalfOpen : LineEnd::Closed;
+    if (dda) {
+      dda_line(pa, pb, width, height, end, plot);
+    } else {
+      bresenham_line(pa, pb, width, height, end, plot);
+    }
+  }
+  if (!pl.closed) {
+    const Point p = pl.points[n - 1];
+    if (p.x >= 0 && p.x < w && p.y >= 0 && p.y < h) plot(static_cast<int>(p.x), static_cast<int>(p.y));
+  }
+}
+
+}  // namespace
+
+bool parse_hairline_mode(std::string_view name, HairlineMode& out) {
+  if (name == "bresenham") out = HairlineMode::Bresenham;
+  else if (name == "dda") out = HairlineMode::Dda;
+  else if (name == "wu") out = HairlineMode::Wu;
+  else if (name == "analytic") out = HairlineMode::Analytic;
+  else return false;
+  return true;
+}
+
+std::string_view to_string(HairlineMode mode) {
+  switch (mode) {
+    case HairlineMode::Bresenham: return "bresenham";
+    case HairlineMode::Dda: return "dda";
+    case HairlineMode::Wu: return "wu";
+    case HairlineMode::Analytic: return "analytic";
+  }
+  return "?";
+}
+
+void draw_hairlines(Image& image, const Path& path, const Affine& transform, Color color, HairlineMode mode,
+                    float coverage_scale) {
+  if (!(color.a > 0) || !(coverage_scale > 0) || path.empty() || image.width <= 0 || image.height <= 0) return;
+  const Color c = color.with_alpha(std::min(coverage_scale, 1.0f));
+  const Path device = path.transformed(transform);
+  std::vector<StrokePolyline> pieces;
+  const Rect clip{-2, -2, image.width + 2.0, image.height + 2.0};
+  flatten_for_stroke_clipped(device, kHairlineTolerance, clip, pieces);
+  switch (mode) {
+    case HairlineMode::Bresenham:
+    case HairlineMode::Dda: {
+      PixelBlender blender(image, c);
+      for (const StrokePolyline& pl : pieces) {
+        walk_aliased(pl, image.width, image.height, mode == HairlineMode::Dda,
+                     [&](int x, int y) { blender.blend_full(x, y); });
+      }
+      break;
+    }
+    case HairlineMode::Wu: {
+      PixelBlender blender(image, c);
+      for (const StrokePolyline& pl : pieces) {
+        const std::size_t n = pl.points.size();
+        const std::size_t segs = n < 2 ? 0 : (pl.closed ? n : n - 1);
+        for (std::size_t i = 0; i < segs; ++i) {
+          wu_line(pl.points[i], pl.points[(i + 1) % n], image.width, image.height,
+                  [&](int x, int y, float cov) { blender.blend(x, y, cov); });
+        }
+      }
+      break;
+    }
+    case HairlineMode::Analytic: {
+      StrokeStyle style;
+      style.width = 1;
+      style.cap = LineCap::Butt;
+      style.join = LineJoin::Bevel;
+      Path outline;
+      stroke_polylines(pieces, style, kHairlineTolerance, outline);
+      Renderer renderer;
+      renderer.fill(image, outline, Affine{}, c, FillOptions{FillRule::NonZero, AntiAlias::Analytic, kHairlineTolerance});
+      break;
+    }
+  }
+}
+
+namespace {
+
+// Scales every coverage value on its way to another sink.
+class ScaledSink final : public CoverageSink {
+ public:
+  ScaledSink(CoverageSink& out, float scale) : out_(out), scale_(scale) {}
+  void span(int y, int x0, int x1, float coverage) override { out_.span(y, x0, x1, coverage * scale_); }
+  void row(int y, int x0, int x1, const float* coverage) override {
+    buf_.assign(coverage, coverage + (x1 - x0));
+    for (float& c : buf_) c *= scale_;
+    out_.row(y, x0, x1, buf_.data());
+  }
+
+ private:
+  CoverageSink& out_;
+  float scale_;
+  std::vector<float> buf_;
+};
+
+struct PixelHit {
+  int y, x;
+  float coverage;
+};
+
+// Sorts the hits into rows, merges repeated pixels (sum, clamped to 1) and emits runs of adjacent pixels.
+void emit_hits(std::vector<PixelHit>& hits, float scale, CoverageSink& sink) {
+  std::sort(hits.begin(), hits.end(), [](const PixelHit& a, const PixelHit& b) { return a.y != b.y ? a.y < b.y : a.x < b.x; });
+  std::vector<float> run;
+  std::size_t i = 0;
+  while (i < hits.size()) {
+    const int y = hits[i].y, x0 = hits[i].x;
+    int x = x0;
+    run.clear();
+    while (i < hits.size() && hits[i].y == y && hits[i].x <= x + 1) {
+      if (hits[i].x == x + 1 || run.empty()) {
+        x = hits[i].x;
+        run.push_back(0);
+      }
+      run.back() = std::min(1.0f, run.back() + hits[i].coverage);
+      ++i;
+    }
+    for (float& c : run) c *= scale;
+    if (run.size() == 1) {
+      if (run[0] > 0) sink.span(y, x0, x0 + 1, run[0]);
+    } else {
+      sink.row(y, x0, x0 + static_cast<int>(run.size()), run.data());
+    }
+  }
+}
+
+}  // namespace
+
+void hairline_coverage(const Path& path, const Affine& transform, HairlineMode mode, int width, int height,
+                       CoverageSink& sink, float coverage_scale) {
+  if (!(coverage_scale > 0) || path.empty() || width <= 0 || height <= 0) return;
+  const float scale = std::min(coverage_scale, 1.0f);
+  const Path device = path.transformed(transform);
+  std::vector<StrokePolyline> pieces;
+  const Rect clip{-2, -2, width + 2.0, height + 2.0};
+  flatten_for_stroke_clipped(device, kHairlineTolerance, clip, pieces);
+  if (mode == HairlineMode::Analytic) {
+    StrokeStyle style;
+    style.width = 1;
+    style.join = LineJoin::Bevel;
+    Path outline;
+    stroke_polylines(pieces, style, kHairlineTolerance, outline);
+    Polylines lines;
+    FlattenOptions fo;
+    fo.tolerance = kHairlineTolerance;
+    fo.clip = &clip;
+    flatten(outline, Affine{}, fo, lines);
+    Rasterizer rasterizer;
+    ScaledSink scaled(sink, scale);
+    rasterizer.fill(lines, FillRule::NonZero, AntiAlias::Analytic, width, height, scaled);
+    return;
+  }
+  std::vector<PixelHit> hits;
+  // The same pixels as draw_hairlines, kept as a list (memory proportional to the pixels drawn).
+  for (const StrokePolyline& pl : pieces) {
+    if (mode == HairlineMode::Wu) {
+      const std::size_t n = pl.points.size();
+      const std::size_t segs = n < 2 ? 0 : (pl.closed ? n : n - 1);
+      for (std::size_t i = 0; i < segs; ++i) {
+        wu_line(pl.points[i], pl.points[(i + 1) % n], width, height,
+                [&](int x, int y, float cov) { hits.push_back({y, x, cov}); });
+      }
+      continue;
+    }
+    auto plot = [&](int x, int y) { hits.push_back({y, x, 1.0f}); };
+    walk_aliased(pl, width, height, mode == HairlineMode::Dda, plot);
+  }
+  emit_hits(hits, scale, sink);
+}
+
+namespace {
+
+// The device-space centre lines of a thin stroke: dashes applied in user space, dots dropped.
+Path thin_centre_lines(const Path& path, const StrokeStyle& style, double user_tol) {
+  std::vector<StrokePolyline> pieces, dashed;
+  flatten_for_stroke(path, user_tol, pieces);
+  dash_polylines(pieces, normalize_dashes(style.dashes), style.dash_offset, dashed);
+  Path centre_lines;
+  for (const StrokePolyline& pl : dashed) {
+    if (pl.points.size() < 2) continue;
+    centre_lines.move_to(pl.points[0]);
+    for (std::size_t i = 1; i < pl.points.size(); ++i) centre_lines.line_to(pl.points[i]);
+    if (pl.closed) centre_lines.close();
+  }
+  return centre_lines;
+}
+
+}  // namespace
+
+template <class T>
+void stroke_path(BasicImage<T>& image, const Path& path, const Affine& transform, const StrokeStyle& style,
+                 Color color, const StrokeRenderOptions& options) {
+  if (!(style.width > 0) || !std::isfinite(style.width) || !(color.a > 0) || path.empty()) return;
+  if (!transform.is_finite()) return;
+  const double tolerance = options.tolerance > 0 && std::isfinite(options.tolerance) ? options.tolerance : kDefaultTolerance;
+  const double device_width = style.width * std::sqrt(std::fabs(transform.determinant()));
+  const double user_tol = user_tolerance(transform, tolerance);
+  Renderer local;
+  Renderer& renderer = options.renderer ? *options.renderer : local;
+  if (device_width < 1) {
+    // Thin: dashes in user space, then hairlines in device space with alpha scaled by the width.
+    const Path centre_lines = thin_centre_lines(path, style, user_tol);
+    HairlineMode mode = options.thin_mode;
+    if (options.aa == AntiAlias::None) {
+      if (mode != HairlineMode::Dda) mode = HairlineMode::Bresenham;
+    } else if (mode == HairlineMode::Bresenham || mode == HairlineMode::Dda) {
+      mode = HairlineMode::Analytic;
+    }
+    if constexpr (std::is_same_v<T, std::uint8_t>) {
+      draw_hairlines(image, centre_lines, transform, color, mode, static_cast<float>(device_width));
+    } else {
+      // Deeper images: the analytic 1-px stroke (the per-pixel algorithms write 8-bit pixels).
+      std::vector<StrokePolyline> pieces;
+      const Path device = centre_lines.transformed(transform);
+      const Rect clip{-2, -2, image.width + 2.0, image.height + 2.0};
+      flatten_for_stroke_clipped(device, kHairlineTolerance, clip, pieces);
+      StrokeStyle one;
+      one.width = 1;
+      one.join = LineJoin::Bevel;
+      Path outline;
+      stroke_polylines(pieces, one, kHairlineTolerance, outline);
+      renderer.fill(image, outline, Affine{}, color.with_alpha(static_cast<float>(device_width)),
+                    FillOptions{FillRule::NonZero, options.aa, kHairlineTolerance});
+    }
+    return;
+  }
+  const Path outline = stroke_to_path(path, style, user_tol);
+  renderer.fill(image, outline, transform, color, FillOptions{FillRule::NonZero, options.aa, tolerance});
+}
+
+template void stroke_path(Image&, const Path&, const Affine&, const StrokeStyle&, Color, const StrokeRenderOptions&);
+template void stroke_path(Image16&, const Path&, const Affine&, const StrokeStyle&, Color, const StrokeRenderOptions&);
+
+}  // namespace vraster
