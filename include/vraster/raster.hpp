@@ -103,6 +103,8 @@ class Rasterizer {
   int y_min_ = 0, y_max_ = 0;               // rows touched by edges_, [y_min_, y_max_)
   std::vector<std::uint32_t> bucket_start_;  // edge table: edges starting in row r are order_[bucket_start_[r-y_min_] ..]
   std::vector<std::uint32_t> order_;
+  std::vector<std::uint32_t> edge_row_;      // first row of each edge (relative to y_min_)
+  std::vector<std::uint32_t> cursor_;        // fill positions while bucketing
   std::vector<std::uint32_t> active_;        // the active edge list (indices into edges_)
   struct Crossing {
     double x;

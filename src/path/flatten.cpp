@@ -15,9 +15,11 @@ constexpr double kSplitFactor = 4.0;
 constexpr int kMaxSplitDepth = 48;
 
 int segments_for(double second_difference, double k, double tolerance) {
-  const double n = std::ceil(std::sqrt(k * second_difference / tolerance));
-  if (!(n >= 1)) return 1;  // also catches NaN
-  return n > kMaxSegmentsPerCurve ? kMaxSegmentsPerCurve : static_cast<int>(n);
+  const double x = std::sqrt(k * second_difference / tolerance);
+  if (!(x < kMaxSegmentsPerCurve)) return kMaxSegmentsPerCurve;  // also catches NaN and infinity
+  // Round up without std::ceil (a library call on baseline x86-64).
+  const int n = static_cast<int>(x);
+  return std::max(n + (n < x ? 1 : 0), 1);
 }
 
 Rect control_box(const Point* p, int count) {
@@ -108,10 +110,24 @@ class Flattener {
   bool open_ = false;
 };
 
-Point device(const Affine& m, Point p) {
+[[noreturn, gnu::cold]] void throw_not_finite() {
+  throw Error("flatten: a coordinate is not finite after the transform");
+}
+
+inline Point device(const Affine& m, Point p) {
   const Point q = m.apply(p);
-  if (!is_finite(q)) throw Error("flatten: a coordinate is not finite after the transform");
+  if (!is_finite(q)) [[unlikely]] throw_not_finite();
   return q;
+}
+
+// The device-space box of the path's control points (the transformed corners of its user-space box contain them).
+Rect device_box(const Path& path, const Affine& m) {
+  const Rect b = path.control_bounds();
+  Rect r = Rect::from_point(m.apply({b.x0, b.y0}));
+  r.include(m.apply({b.x1, b.y0}));
+  r.include(m.apply({b.x0, b.y1}));
+  r.include(m.apply({b.x1, b.y1}));
+  return r;
 }
 
 }  // namespace
@@ -133,7 +149,15 @@ void flatten(const Path& path, const Affine& transform, const FlattenOptions& op
     throw Error("flatten: tolerance must be a positive number");
   }
   if (!transform.is_finite()) throw Error("flatten: transform has a non-finite entry");
-  Flattener f(options, out);
+  if (path.empty()) return;
+  // Do only the clipping work the path needs: when all of it lies inside the clip, no curve needs the test.
+  const Rect box = device_box(path, transform);
+  FlattenOptions effective = options;
+  if (options.clip && box.x0 >= options.clip->x0 && box.y0 >= options.clip->y0 && box.x1 <= options.clip->x1 &&
+      box.y1 <= options.clip->y1) {
+    effective.clip = nullptr;
+  }
+  Flattener f(effective, out);
   const auto pts = path.points();
   std::size_t i = 0;
   Point last{};

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 namespace vraster::detail {
@@ -73,9 +74,42 @@ struct BoundarySweep::State {
   std::vector<std::uint8_t> exterior;  // NonExterior second pass: per face id, whether it is outside
 };
 
+// Events are kept per pixel row: only the current row's events are in the heap, later ones wait unsorted in their
+// row's bucket. The heap stays small (one row's crossings), so a crossing costs a short heap operation.
 void BoundarySweep::push_event(const Event& e) {
+  if (bucketed_) {
+    const auto row = static_cast<std::int64_t>(std::floor(e.y)) - row_base_;
+    if (row > current_row_) {
+      buckets_[static_cast<std::size_t>(row)].push_back(e);
+      lowest_pending_ = std::min(lowest_pending_, row);
+      return;
+    }
+  }
   heap_.push_back(e);
   std::push_heap(heap_.begin(), heap_.end(), Later{});
+}
+
+// Makes the heap hold the earliest pending events if they lie in a row up to `max_y`'s (the next start: rows
+// after it must not be loaded yet, or every event pushed before the sweep gets there would go to the heap);
+// false when the heap stays empty.
+bool BoundarySweep::refill(double max_y) {
+  if (!heap_.empty()) return true;
+  if (!bucketed_) return false;
+  const std::int64_t last = std::isfinite(max_y)
+                                ? std::min(static_cast<std::int64_t>(std::floor(max_y)) - row_base_,
+                                           static_cast<std::int64_t>(buckets_.size()) - 1)
+                                : static_cast<std::int64_t>(buckets_.size()) - 1;
+  for (auto r = std::max(current_row_ + 1, lowest_pending_); r <= last; ++r) {
+    auto& bucket = buckets_[static_cast<std::size_t>(r)];
+    if (bucket.empty()) continue;
+    current_row_ = r;
+    lowest_pending_ = r + 1;
+    heap_.swap(bucket);
+    std::make_heap(heap_.begin(), heap_.end(), Later{});
+    return true;
+  }
+  lowest_pending_ = std::max(lowest_pending_, last + 1);
+  return false;
 }
 
 BoundarySweep::Event BoundarySweep::pop_event() {
@@ -119,6 +153,21 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
   dirty_.assign(n, 0);
   order_.clear();
   heap_.clear();
+  // Row buckets when the edges span a sane number of rows (always after clipping to an image).
+  double y_lo = std::numeric_limits<double>::infinity(), y_hi = -y_lo;
+  for (const Edge& e : edges) {
+    y_lo = std::min(y_lo, e.y0);
+    y_hi = std::max(y_hi, e.y1);
+  }
+  bucketed_ = n > 0 && y_hi - y_lo < (1 << 20);
+  if (bucketed_) {
+    row_base_ = static_cast<std::int64_t>(std::floor(y_lo));
+    const auto rows = static_cast<std::size_t>(static_cast<std::int64_t>(std::floor(y_hi)) - row_base_ + 2);
+    for (auto& b : buckets_) b.clear();
+    if (buckets_.size() < rows) buckets_.resize(rows);
+    current_row_ = -1;
+    lowest_pending_ = 0;
+  }
   state.faces.reset();
 
   auto emit = [&](std::uint32_t e, double y) {
@@ -157,7 +206,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
   for (;;) {
     const double ys = next_start < n ? edges[starts_[next_start]].y0 : inf;
     const double yh = next_h < h_order.size() ? horizontals[h_order[next_h]].y0 : inf;
-    const double ye = heap_.empty() ? inf : heap_.front().y;
+    const double ye = refill(std::min(ys, yh)) ? heap_.front().y : inf;
     const double y = std::min({ys, yh, ye});
     if (y == inf) break;
     const bool batch = ys == y || yh == y || (ye == y && heap_.front().kind == 0);
@@ -187,7 +236,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
 
     // A batch at height y: edges ending, edges starting, horizontal edges.
     ends.clear();
-    while (!heap_.empty() && heap_.front().y == y && heap_.front().kind == 0) ends.push_back(pop_event().a);
+    while (refill(y) && heap_.front().y == y && heap_.front().kind == 0) ends.push_back(pop_event().a);
     const std::size_t start_begin = next_start;
     while (next_start < n && edges[starts_[next_start]].y0 == y) ++next_start;
     blocked.clear();
@@ -201,6 +250,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     new_edges.clear();
     std::sort(ends.begin(), ends.end(), [&](std::uint32_t i, std::uint32_t j) { return edges[i].x1 < edges[j].x1; });
     consumed_.assign(ends.size(), 0);
+    replaced_.clear();
     std::size_t ei = 0;
     for (std::size_t k = start_begin; k < next_start; ++k) {
       const std::uint32_t s = starts_[k];
@@ -223,6 +273,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
         weight_[s] = weight_[e];
         since_[s] = y;
         dirty_[s] = 1;
+        replaced_.push_back(s);
         push_event({es.y1, 0, s, 0});
         consumed_[m] = 1;
       } else {
@@ -233,10 +284,13 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     for (std::size_t m = 0; m < ends.size(); ++m) unmatched_ends += !consumed_[m];
 
     if (unmatched_ends == 0 && new_edges.empty() && blocked.empty()) {
-      for (std::size_t p = 0; p + 1 < order_.size(); ++p) {
-        if (dirty_[order_[p]] | dirty_[order_[p + 1]]) check_pair(p, y);
+      // Only pass-through vertices: check the new neighbours of the continuing edges, O(1) each.
+      for (std::uint32_t s : replaced_) {
+        const auto p = static_cast<std::size_t>(pos_[s]);
+        if (p > 0) check_pair(p - 1, y);
+        if (p + 1 < order_.size()) check_pair(p, y);
+        dirty_[s] = 0;
       }
-      for (std::uint32_t e : order_) dirty_[e] = 0;
       continue;
     }
 

@@ -39,11 +39,16 @@ class BoundarySweep {
 
   void check_pair(std::size_t left_pos, double y);
   void push_event(const Event& e);
+  bool refill(double max_y);
   Event pop_event();
 
   const std::vector<Edge>* edges_ = nullptr;
   std::vector<std::uint32_t> starts_;  // edge indices sorted by (y0, x0)
-  std::vector<Event> heap_;
+  std::vector<Event> heap_;                   // events of the current row
+  std::vector<std::vector<Event>> buckets_;   // events of later rows, by row
+  bool bucketed_ = false;
+  std::int64_t row_base_ = 0, current_row_ = -1;
+  std::int64_t lowest_pending_ = 0;           // no bucket below this row holds events
   std::vector<std::uint32_t> order_;   // active edges sorted by x at the sweep line
   std::vector<std::int32_t> pos_;      // position of each edge in order_, -1 when inactive
   std::vector<std::int32_t> left_winding_;  // winding number just left of each active edge
@@ -52,7 +57,8 @@ class BoundarySweep {
   std::vector<double> since_;          // y from which weight_ holds
   std::vector<std::uint8_t> dirty_;    // edges whose neighbours changed in the current batch
   std::vector<std::uint32_t> scratch_;
-  std::vector<std::uint8_t> consumed_;  // ends of the current batch already continued by a starting edge
+  std::vector<std::uint8_t> consumed_;
+  std::vector<std::uint32_t> replaced_;  // edges that continued an ending one in the current batch  // ends of the current batch already continued by a starting edge
 };
 
 }  // namespace vraster::detail

@@ -62,15 +62,40 @@ void Rasterizer::add_clipped_segment(Point p, Point q, int width, int height) {
 
 void Rasterizer::build_edges(const Polylines& lines, int width, int height) {
   edges_.clear();
+  if (lines.points.empty()) {
+    y_min_ = y_max_ = 0;
+    return;
+  }
+  // Only clip when something lies outside the image: most paths don't, and then every segment is an edge as is.
+  double x_lo = lines.points[0].x, x_hi = x_lo, y_lo = lines.points[0].y, y_hi = y_lo;
+  for (const Point& p : lines.points) {
+    x_lo = std::min(x_lo, p.x);
+    x_hi = std::max(x_hi, p.x);
+    y_lo = std::min(y_lo, p.y);
+    y_hi = std::max(y_hi, p.y);
+  }
+  const bool inside = x_lo >= 0 && y_lo >= 0 && x_hi <= width && y_hi <= height;
   for (std::size_t k = 0; k < lines.contour_count(); ++k) {
     const auto pts = lines.contour(k);
     const std::size_t n = pts.size();
     if (n < 2) continue;
     for (std::size_t i = 0; i < n; ++i) {
-      add_clipped_segment(pts[i], pts[i + 1 == n ? 0 : i + 1], width, height);
+      const Point p = pts[i], q = pts[i + 1 == n ? 0 : i + 1];
+      if (!inside) {
+        add_clipped_segment(p, q, width, height);
+      } else if (q.y > p.y) {
+        edges_.push_back({p.x, p.y, q.x, q.y, (q.x - p.x) / (q.y - p.y), 1});
+      } else if (q.y < p.y) {
+        edges_.push_back({q.x, q.y, p.x, p.y, (p.x - q.x) / (p.y - q.y), -1});
+      }
     }
   }
-  compute_row_range(height);
+  if (inside) {
+    y_min_ = std::max(static_cast<int>(std::floor(y_lo)), 0);
+    y_max_ = std::min(static_cast<int>(std::ceil(y_hi)), height);
+  } else {
+    compute_row_range(height);
+  }
 }
 
 void Rasterizer::compute_row_range(int height) {
@@ -124,23 +149,20 @@ void Rasterizer::clip_pieces(int width, int height) {
 //  aliased:  the first row whose sample line y = r + 0.5 the edge crosses, ceil(y0 - 0.5) (half-open [y0, y1)).
 void Rasterizer::bucket_edges(bool by_sample_row) {
   const int rows = std::max(y_max_ - y_min_, 0);
-  bucket_start_.assign(static_cast<std::size_t>(rows) + 1, 0);
-  auto first_row = [&](const Edge& e) {
-    const double r = by_sample_row ? std::ceil(e.y0 - 0.5) : std::floor(e.y0);
-    return std::clamp(static_cast<int>(r), y_min_, y_max_) - y_min_;
-  };
-  for (const Edge& e : edges_) ++bucket_start_[first_row(e)];
-  std::uint32_t sum = 0;
-  for (auto& c : bucket_start_) {
-    const std::uint32_t count = c;
-    c = sum;
-    sum += count;
+  bucket_start_.assign(static_cast<std::size_t>(rows) + 2, 0);
+  edge_row_.resize(edges_.size());
+  for (std::size_t i = 0; i < edges_.size(); ++i) {
+    const double y0 = edges_[i].y0;
+    const double r = by_sample_row ? std::ceil(y0 - 0.5) : std::floor(y0);
+    const int row = std::clamp(static_cast<int>(r), y_min_, y_max_) - y_min_;
+    edge_row_[i] = static_cast<std::uint32_t>(row);
+    ++bucket_start_[static_cast<std::size_t>(row) + 1];
   }
+  // Prefix sums: bucket r holds order_[bucket_start_[r] .. bucket_start_[r + 1]).
+  for (std::size_t r = 1; r < bucket_start_.size(); ++r) bucket_start_[r] += bucket_start_[r - 1];
   order_.resize(edges_.size());
-  // Fill using a running cursor per bucket, then restore the starts by shifting.
-  for (std::uint32_t i = 0; i < edges_.size(); ++i) order_[bucket_start_[first_row(edges_[i])]++] = i;
-  for (std::size_t r = bucket_start_.size() - 1; r > 0; --r) bucket_start_[r] = bucket_start_[r - 1];
-  bucket_start_[0] = 0;
+  cursor_.assign(bucket_start_.begin(), bucket_start_.end() - 1);
+  for (std::uint32_t i = 0; i < edges_.size(); ++i) order_[cursor_[edge_row_[i]]++] = i;
 }
 
 }  // namespace vraster
