@@ -76,9 +76,10 @@ class FreeTypeEngine final : public Engine {
     height_ = doc.height;
     pixels_.assign(static_cast<std::size_t>(width_) * height_, 0xFFFFFFFFu);
     items_.clear();
-    items_.reserve(doc.fills.size());
+    items_.reserve(doc.items.size());
     const double h = height_;
-    for (const vraster::svg::FillItem& fill : doc.fills) {
+    for (const vraster::svg::DrawItem& fill : doc.items) {
+      if (!fill.is_fill()) continue;  // the fill benchmark compares fills only
       Item it;
       const auto verbs = fill.path.verbs();
       const auto pts = fill.path.points();

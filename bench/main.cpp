@@ -293,11 +293,12 @@ int main(int argc, char** argv) {
     r.scene = name;
     r.pixels_w = doc.width;
     r.pixels_h = doc.height;
-    r.items = doc.fills.size();
+    r.items = static_cast<std::size_t>(
+        std::count_if(doc.items.begin(), doc.items.end(), [](const auto& item) { return item.is_fill(); }));
     r.ms.assign(E, std::nullopt);
     r.frames.assign(E, 0);
     r.errors.assign(E, "");
-    std::fprintf(stderr, "%s (%dx%d, %zu paths):", name.c_str(), doc.width, doc.height, doc.fills.size());
+    std::fprintf(stderr, "%s (%dx%d, %zu paths):", name.c_str(), doc.width, doc.height, r.items);
     std::fflush(stderr);
 
     // Prepare and warm up every engine.

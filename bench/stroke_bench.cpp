@@ -154,12 +154,12 @@ void bench_scene(const Scene& s, const vraster::StrokeStyle& style, const char* 
   for (int f = 0; f < frames; ++f) {
     const auto t0 = Clock::now();
     img.clear(vraster::Color{1, 1, 1, 1});
-    for (const auto& item : s.doc.fills) vraster::stroke_path(img, item.path, item.transform, style, item.color, options);
+    for (const auto& item : s.doc.items) vraster::stroke_path(img, item.path, item.transform, style, item.color, options);
     tv.push_back(ms_since(t0));
     // Stroker alone (outline construction, no rasterization).
     const auto t1 = Clock::now();
     std::size_t pts = 0;
-    for (const auto& item : s.doc.fills) pts += vraster::stroke_to_path(item.path, style, 0.1).points().size();
+    for (const auto& item : s.doc.items) pts += vraster::stroke_to_path(item.path, style, 0.1).points().size();
     ts.push_back(ms_since(t1));
     if (pts == 1) std::printf(" ");
   }
@@ -175,7 +175,7 @@ void bench_scene(const Scene& s, const vraster::StrokeStyle& style, const char* 
   if (!style.dashes.empty()) cairo_set_dash(cr, style.dashes.data(), static_cast<int>(style.dashes.size()), style.dash_offset);
   // Paths are built once (device space), as the fill benchmark does; the stroker runs every frame.
   std::vector<cairo_path_t*> paths;
-  for (const auto& item : s.doc.fills) {
+  for (const auto& item : s.doc.items) {
     cairo_new_path(cr);
     append_cairo_path(cr, item.path, item.transform);
     paths.push_back(cairo_copy_path(cr));
@@ -187,7 +187,7 @@ void bench_scene(const Scene& s, const vraster::StrokeStyle& style, const char* 
     cairo_set_source_rgb(cr, 1, 1, 1);
     cairo_paint(cr);
     for (std::size_t i = 0; i < paths.size(); ++i) {
-      const auto& col = s.doc.fills[i].color;
+      const auto& col = s.doc.items[i].color;
       cairo_set_source_rgba(cr, col.r, col.g, col.b, col.a);
       cairo_append_path(cr, paths[i]);
       cairo_stroke(cr);
@@ -236,6 +236,8 @@ int main(int argc, char** argv) {
     s.name = n;
     try {
       s.doc = vraster::svg::load_svg(dir + "/" + n + ".svg");
+      // The scenes' fill outlines are what gets stroked here (with the styles below): drop the file's own strokes.
+      std::erase_if(s.doc.items, [](const vraster::svg::DrawItem& item) { return !item.is_fill(); });
     } catch (const std::exception& e) {
       std::printf("%-16s skipped: %s\n", n.c_str(), e.what());
       continue;

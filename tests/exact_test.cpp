@@ -257,9 +257,10 @@ TEST(ExactHand, PathDoublingBackOnItself) {
 TEST(ExactRandom, SelfIntersectingPolygonsMatchReferenceForAllRules) {
   // Seeded; vertex counts 3..200 (mostly small, the reference is O(n^2) per pixel); images 16x16..32x32;
   // coordinates up to 4 px beyond the image on every side.
-  double worst = 0;
+  double worst = 0, worst_ulps = 0;
   int cases = 0;
   for (unsigned seed = 1; seed <= 24; ++seed) {
+    if (!exact::kOptimizedBuild && seed % 3 != 0) continue;  // slow builds: a third of the seeds (incl. n >= 100)
     std::mt19937 rng(seed);
     const int size = 16 + static_cast<int>(rng() % 17);
     const int n = seed % 8 == 0 ? 100 + static_cast<int>(rng() % 101) : 3 + static_cast<int>(rng() % 40);
@@ -273,10 +274,74 @@ TEST(ExactRandom, SelfIntersectingPolygonsMatchReferenceForAllRules) {
           << "seed " << seed << " n " << n << " size " << size << " rule " << rule_name(rule);
       worst = std::max(worst, err);
       ++cases;
+      // The sink receives floats: within 1e-9 in double means at most one float ulp from the rounded reference.
+      for (std::size_t i = 0; i < got.size(); ++i) {
+        const float f = static_cast<float>(want[i]);
+        if (f < 1e-6f) continue;  // tiny values: the absolute 1e-9 above applies
+        const double ulp = std::nextafter(f, 2.0f) - f;
+        const double ulps = std::abs(got[i] - f) / ulp;
+        worst_ulps = std::max(worst_ulps, ulps);
+        EXPECT_LE(ulps, 1.0) << "seed " << seed << " rule " << rule_name(rule) << " pixel " << i;
+      }
     }
   }
   RecordProperty("max_error", std::to_string(worst));
-  std::printf("[ExactRandom] %d cases, max |exact - reference| = %.3g\n", cases, worst);
+  std::printf("[ExactRandom] %d cases, max |exact - reference| = %.3g (%.0f float ulp)\n", cases, worst, worst_ulps);
+}
+
+// Random polygons on the coarse grid k/2 in [0, 12]: many exact degeneracies (collinear overlapping edges, vertices
+// on edges, crossings at vertices and on pixel corners, horizontal edges). With `nudge`, a random half of the y
+// coordinates is moved by one ulp up or down.
+Polygon coarse_polygon(std::mt19937& rng, bool nudge) {
+  const int n = 3 + static_cast<int>(rng() % 12);
+  std::uniform_int_distribution<int> g(0, 24);
+  Polygon p;
+  for (int i = 0; i < n; ++i) p.push_back({g(rng) * 0.5, g(rng) * 0.5});
+  if (nudge) {
+    for (Point& q : p) {
+      const unsigned r = rng() % 4;
+      if (r == 0) q.y = std::nextafter(q.y, 100.0);
+      if (r == 1) q.y = std::nextafter(q.y, -100.0);
+    }
+  }
+  return p;
+}
+
+TEST(ExactRandom, CoarseGridDegeneraciesMatchReference) {
+  // Property: exact mode (and non-exterior) equals the reference to 1e-9 on degenerate coarse-grid polygons.
+  double worst = 0;
+  for (unsigned seed = 1; seed <= 150; ++seed) {
+    std::mt19937 rng(seed);
+    const std::vector<Polygon> poly{coarse_polygon(rng, false)};
+    for (FillRule rule : {FillRule::EvenOdd, FillRule::NonZero, FillRule::AbsGeq2, FillRule::NonExterior}) {
+      const auto want = rule == FillRule::NonExterior ? exact::trapezoid_coverage(poly, rule, 12, 12)
+                                                      : exact::scan_coverage(poly, rule, 12, 12);
+      double err = 0;
+      EXPECT_TRUE(grids_near(engine_coverage(poly, rule, AntiAlias::Exact, 12, 12), want, 12, 1e-9, &err))
+          << "seed " << seed << " " << rule_name(rule);
+      worst = std::max(worst, err);
+    }
+  }
+  std::printf("[ExactRandom] coarse grid: max error %.3g\n", worst);
+}
+
+// BUG (engine, boundary sweep; same family as HardCase.DISABLED_EdgeTiltedByOneUlpCrossingOtherEdges): with y
+// coordinates nudged by one ulp, 15 of the 900 (polygon, rule) pairs come out wrong by up to 0.2 per pixel (e.g. seed
+// 9, NonZero: 0.214). The reference's two methods agree on these inputs to 4e-14, and the same polygons without the
+// nudge all pass (test above).
+TEST(ExactRandom, OneUlpNudgedCoarseGridMatchesReference) {
+  int failures = 0;
+  for (unsigned seed = 1; seed <= 300; ++seed) {
+    std::mt19937 rng(seed);
+    const std::vector<Polygon> poly{coarse_polygon(rng, true)};
+    for (FillRule rule : {FillRule::EvenOdd, FillRule::NonZero, FillRule::AbsGeq2}) {
+      const bool ok = grids_near(engine_coverage(poly, rule, AntiAlias::Exact, 12, 12),
+                                 exact::scan_coverage(poly, rule, 12, 12), 12, 1e-9);
+      failures += !ok;
+      EXPECT_TRUE(ok) << "seed " << seed << " " << rule_name(rule);
+    }
+  }
+  std::printf("[ExactRandom] one-ulp nudged: %d failing (polygon, rule) pairs of 900\n", failures);
 }
 
 TEST(ExactRandom, AnalyticEqualsExactForSimplePolygons) {

@@ -142,8 +142,7 @@ TEST(NonExteriorHand, SquareSpiralChannelOfWindingZeroIsEnclosed) {
   check_region(cells, FillRule::NonZero, cells, size, size, "spiral", /*check_reference=*/false);
   EXPECT_NEAR(exact::sum(engine_coverage(cells, FillRule::NonZero, AntiAlias::Exact, size, size)),
               wall_cells * s * s, 1e-9);
-  // One opening in the border (cell (0, 1) removed: the channel starts at (1, 1)... the spiral turtle starts on the
-  // wall at (1,1), so open the border next to the first channel cell instead) lets the channel out.
+  // Removing the border cell next to the first channel cell of column 1 opens the channel to the outside.
   int open_i = -1, open_j = -1;
   for (int j = 1; j <= n && open_i < 0; ++j) {
     if (!wall[j][1]) open_i = 0, open_j = j;  // channel cell at column 1: open the border cell left of it
@@ -199,7 +198,9 @@ TEST(NonExteriorHand, OpenSubpathIsClosedImplicitly) {
   for (AntiAlias aa : {AntiAlias::None, AntiAlias::Analytic, AntiAlias::Exact}) {
     const auto got = engine_coverage(open_path, FillRule::NonExterior, aa, 11, 10);
     EXPECT_EQ(got, engine_coverage(closed_path, FillRule::NonExterior, aa, 11, 10)) << to_string(aa);
-    if (aa != AntiAlias::None) EXPECT_TRUE(grids_near(got, want, 11, 1e-9)) << to_string(aa);
+    if (aa != AntiAlias::None) {
+      EXPECT_TRUE(grids_near(got, want, 11, 1e-9)) << to_string(aa);
+    }
   }
 }
 

@@ -29,6 +29,17 @@ enum class AntiAlias : std::uint8_t {
              ///< inside a pixel)
   Exact,     ///< true area of (filled region x pixel) for every rule: the boundary of the filled region is
              ///< extracted first (a sweep over the edges' crossings), then accumulated as in Analytic
+  // Point-sampled modes (src/raster/supersample.cpp): coverage = share of a pixel's samples whose winding number
+  // satisfies the rule; samples on edges follow the aliased mode's half-open rules (edges [y0, y1), spans [x0, x1)).
+  Ssaa2,     ///< 2 x 2 regular grid of samples at ((i + 0.5) / 2, (j + 0.5) / 2) in each pixel
+  Ssaa4,     ///< 4 x 4 regular grid
+  Ssaa8,     ///< 8 x 8 regular grid
+  Ssaa16,    ///< 16 x 16 regular grid
+  Msaa4,     ///< 4 sparse samples, one per sub-row of a 4 x 4 grid (n-rooks; the Direct3D standard 4x pattern)
+  Msaa8,     ///< 8 sparse samples on an 8 x 8 grid (n-rooks; the Direct3D standard 8x pattern)
+  Msaa16,    ///< 16 sparse samples on a 16 x 16 grid (n-rooks; the Direct3D standard 16x pattern, cell-centred)
+  Fxaa,      ///< aliased coverage (as None) from the rasterizer; the image is then post-filtered by vraster::fxaa()
+             ///< (include/vraster/fxaa.hpp). The rasterizer alone cannot filter: callers that render images apply it
 };
 
 /// Parses "evenodd", "nonzero", ... ; returns false for an unknown name.

@@ -14,6 +14,9 @@ struct UsageError {
 /// `vraster fill-rules IN.svg -o SHEET.png [--winding] [--aa MODE] [--panel PX]`.
 int run_fill_rules(int argc, char** argv);
 
+/// `vraster accuracy [SCENE.svg...] -o DIR [--frames N] [--max-side PX]` (src/cli/accuracy.cpp).
+int run_accuracy(int argc, char** argv);
+
 /// The embedded demo scene (SVG text).
 std::string_view demo_svg();
 

@@ -127,7 +127,9 @@ int run_fill_rules(int argc, char** argv) {
   std::map<int, bool> windings_seen;
   if (winding) {
     Polylines all;
-    for (const svg::FillItem& item : doc.fills) flatten(item.path, to_panel * item.transform, FlattenOptions{}, all);
+    for (const svg::DrawItem& item : doc.items) {
+      if (item.is_fill()) flatten(item.path, to_panel * item.transform, FlattenOptions{}, all);
+    }
     wmap = winding_map(all, pw, ph);
     for (int w : wmap) {
       if (w != 0) windings_seen[w] = true;
@@ -159,7 +161,8 @@ int run_fill_rules(int argc, char** argv) {
     FillOptions options;
     options.rule = kRules[k];
     options.aa = aa;
-    for (const svg::FillItem& item : doc.fills) {
+    for (const svg::DrawItem& item : doc.items) {
+      if (!item.is_fill()) continue;  // the sheet compares fill rules: strokes are left out
       const Color color = winding ? kInk.with_alpha(0.55f) : item.color;
       renderer.fill(panel, item.path, to_panel * item.transform, color, options);
     }

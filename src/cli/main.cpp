@@ -15,6 +15,7 @@
 
 #include "cli/cli.hpp"
 #include "svg_subset/svg.hpp"
+#include "vraster/fxaa.hpp"
 #include "vraster/vraster.hpp"
 #if VRASTER_WITH_TEXT
 #include "vraster_text/cli.hpp"
@@ -27,13 +28,15 @@ constexpr const char* kUsage =
     "usage:\n"
     "  vraster render IN.svg -o OUT.png [--aa MODE] [--rule RULE] [--tolerance T]\n"
     "                 [--depth 8|16] [--background COLOR|transparent] [--bench N]\n"
+    "                 [--hairline bresenham|dda|wu|analytic]   (every stroke as a 1-px hairline)\n"
     "  vraster fill-rules IN.svg -o SHEET.png [--winding] [--aa MODE] [--panel PX]\n"
     "  vraster text \"TEXT\" -o OUT.png [--font FILE]... [--face-index N] [--size PX] [--width W]\n"
     "               [--align left|center|right] [--line-height PX] [--color C] [--background C] [--aa MODE]\n"
     "               [--features F] [--lang L] [--script S] [--dir auto|ltr|rtl] [--hinting none|light]\n"
     "               [--margin PX]\n"
+    "  vraster accuracy [SCENE.svg...] -o DIR [--frames N] [--max-side PX]   (AA methods: time vs error)\n"
     "  vraster demo [-o FILE]\n"
-    "MODE: none | analytic | exact\n"
+    "MODE: none | analytic | exact | ssaa-2|4|8|16 | msaa-4|8|16 | fxaa\n"
     "RULE: evenodd | nonzero | nonexterior | positive | negative | abs-geq-2 (overrides the file's fill-rule)\n";
 
 struct RenderArgs {
@@ -89,6 +92,11 @@ RenderArgs parse_render_args(int argc, char** argv) {
       if (!(a.settings.tolerance >= 1e-4 && a.settings.tolerance <= 100)) {
         throw UsageError{"--tolerance must be between 0.0001 and 100 pixels"};
       }
+    } else if (arg == "--hairline") {
+      const auto v = r.value(arg);
+      HairlineMode mode;
+      if (!parse_hairline_mode(v, mode)) throw UsageError{"--hairline: unknown mode '" + std::string(v) + "'"};
+      a.settings.hairline = mode;
     } else if (arg == "--depth") {
       const double d = parse_number(arg, r.value(arg));
       if (d != 8 && d != 16) throw UsageError{"--depth must be 8 or 16"};
@@ -127,6 +135,7 @@ void render_document(const svg::Document& doc, const RenderArgs& a) {
   auto frame = [&] {
     image.clear(a.background);
     svg::render(doc, image, a.settings, renderer);
+    if (a.settings.aa == AntiAlias::Fxaa) fxaa(image);  // fxaa: aliased render + post-filter
   };
   if (a.bench_frames > 0) {
     frame();  // warm-up: buffers reach their steady-state size
@@ -192,6 +201,7 @@ int main(int argc, char** argv) {
     if (command == "render") return cli::run_render(argc, argv);
     if (command == "demo") return cli::run_demo(argc, argv);
     if (command == "fill-rules") return cli::run_fill_rules(argc, argv);
+    if (command == "accuracy") return cli::run_accuracy(argc, argv);
 #if VRASTER_WITH_TEXT
     if (command == "text") return text::run_text_command(argc, argv);
 #endif

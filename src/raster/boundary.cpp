@@ -125,13 +125,19 @@ void BoundarySweep::check_pair(std::size_t p, double y) {
   const Edge& ea = (*edges_)[a];
   const Edge& eb = (*edges_)[b];
   const double y_end = std::min(ea.y1, eb.y1);
+  const double d0 = x_of(eb, y) - x_of(ea, y);
+  if (d0 < 0) {
+    // Out of order already (an edge that continued another at a vertex took a slot that round-off at that
+    // height left stale): swap now, whatever happens further down.
+    push_event({y, kCrossing, a, b});
+    return;
+  }
   if (!(y_end > y)) return;
   const double d1 = x_of(eb, y_end) - x_of(ea, y_end);
   if (!(d1 < 0)) return;  // still in order where the first of them ends: no crossing
-  const double d0 = x_of(eb, y) - x_of(ea, y);
   double yc = y;
   if (d0 > 0) yc = std::clamp(y + (y_end - y) * (d0 / (d0 - d1)), y, y_end);
-  push_event({yc, 1, a, b});
+  push_event({yc, kCrossing, a, b});
 }
 
 template <class Filled>
@@ -209,7 +215,8 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     const double ye = refill(std::min(ys, yh)) ? heap_.front().y : inf;
     const double y = std::min({ys, yh, ye});
     if (y == inf) break;
-    const bool batch = ys == y || yh == y || (ye == y && heap_.front().kind == 0);
+    // Crossings at y go before the vertices at y, so an edge continuing another takes an up-to-date slot.
+    const bool batch = !(ye == y && heap_.front().kind == kCrossing);
     if (!batch) {
       // A crossing of two neighbours: swap them.
       const Event ev = pop_event();
@@ -236,7 +243,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
 
     // A batch at height y: edges ending, edges starting, horizontal edges.
     ends.clear();
-    while (refill(y) && heap_.front().y == y && heap_.front().kind == 0) ends.push_back(pop_event().a);
+    while (refill(y) && heap_.front().y == y && heap_.front().kind == kEnd) ends.push_back(pop_event().a);
     const std::size_t start_begin = next_start;
     while (next_start < n && edges[starts_[next_start]].y0 == y) ++next_start;
     blocked.clear();
@@ -274,7 +281,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
         since_[s] = y;
         dirty_[s] = 1;
         replaced_.push_back(s);
-        push_event({es.y1, 0, s, 0});
+        push_event({es.y1, kEnd, s, 0});
         consumed_[m] = 1;
       } else {
         new_edges.push_back(s);
@@ -339,7 +346,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
       dirty_[s] = 1;
       since_[s] = y;
       weight_[s] = 0;
-      push_event({es.y1, 0, s, 0});
+      push_event({es.y1, kEnd, s, 0});
     }
     while (oi < order_.size()) scratch_.push_back(order_[oi++]);
     order_.swap(scratch_);

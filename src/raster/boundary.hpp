@@ -25,9 +25,10 @@ class BoundarySweep {
  private:
   struct Event {
     double y;
-    std::uint32_t kind;  // 0: edge end, 1: crossing of two neighbours
+    std::uint32_t kind;  // kCrossing or kEnd; at equal y crossings come first
     std::uint32_t a, b;
   };
+  static constexpr std::uint32_t kCrossing = 0, kEnd = 1;
   struct Later {
     bool operator()(const Event& p, const Event& q) const { return p.y > q.y || (p.y == q.y && p.kind > q.kind); }
   };

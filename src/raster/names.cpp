@@ -16,10 +16,18 @@ constexpr std::array<std::pair<std::string_view, FillRule>, 6> kRules{{
     {"abs-geq-2", FillRule::AbsGeq2},
 }};
 
-constexpr std::array<std::pair<std::string_view, AntiAlias>, 3> kModes{{
+constexpr std::array<std::pair<std::string_view, AntiAlias>, 11> kModes{{
     {"none", AntiAlias::None},
     {"analytic", AntiAlias::Analytic},
     {"exact", AntiAlias::Exact},
+    {"ssaa-2", AntiAlias::Ssaa2},
+    {"ssaa-4", AntiAlias::Ssaa4},
+    {"ssaa-8", AntiAlias::Ssaa8},
+    {"ssaa-16", AntiAlias::Ssaa16},
+    {"msaa-4", AntiAlias::Msaa4},
+    {"msaa-8", AntiAlias::Msaa8},
+    {"msaa-16", AntiAlias::Msaa16},
+    {"fxaa", AntiAlias::Fxaa},
 }};
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "raster/boundary.hpp"
+#include "raster/supersample.hpp"
 #include "vraster/raster.hpp"
 
 namespace vraster {
@@ -314,6 +315,7 @@ Rasterizer& Rasterizer::operator=(Rasterizer&&) noexcept = default;
 void Rasterizer::fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
                       CoverageSink& sink) {
   if (width <= 0 || height <= 0) return;
+  bool swapped = false;
   if (rule == FillRule::NonExterior) {
     // The boundary of the non-exterior region, then a non-zero fill of it in the requested mode.
     build_unclipped_edges(lines);
@@ -328,12 +330,24 @@ void Rasterizer::fill(const Polylines& lines, FillRule rule, AntiAlias aa, int w
       pieces_.clear();
       boundary_->extract(edges_, {}, rule, pieces_);
       edges_.swap(pieces_);
+      swapped = true;
       compute_row_range(height);
       rule = FillRule::NonZero;
     }
   }
+  // Hand the buffers back afterwards, so each keeps its own capacity from frame to frame.
+  struct SwapBack {
+    bool& on;
+    std::vector<Edge>& a;
+    std::vector<Edge>& b;
+    ~SwapBack() {
+      if (on) a.swap(b);
+    }
+  } swap_back{swapped, edges_, pieces_};
   if (edges_.empty()) return;
-  if (aa == AntiAlias::None) {
+  if (const detail::SamplePattern pattern = detail::sample_pattern(aa); pattern.grid > 0) {
+    detail::sweep_sampled(edges_, y_min_, y_max_, rule, pattern, width, sink);  // ssaa-N, msaa-N: supersample.cpp
+  } else if (aa == AntiAlias::None || aa == AntiAlias::Fxaa) {  // fxaa: the caller post-filters the image
     sweep_aliased(rule, width, sink);
   } else {
     sweep_analytic(rule, width, sink);

@@ -3,7 +3,7 @@
 // pugixml parses a private copy of the text in place, so every name and attribute value it hands back points into
 // that copy: pointer - buffer start is the byte offset in the original text, which gives exact line:column
 // positions for every message. The element walk carries the inherited properties and the current transform
-// down the tree and emits one FillItem per filled shape, in document (= paint) order.
+// down the tree and emits a fill and/or a stroke DrawItem per shape, in document (= paint) order, fill first.
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -80,13 +80,34 @@ struct Style {
   Paint fill;
   float fill_opacity = 1;
   FillRule fill_rule = FillRule::NonZero;
+  Paint stroke{PaintKind::None, {}};
+  float stroke_opacity = 1;
+  StrokeStyle stroke_style;  // SVG defaults: width 1, butt, miter, miter limit 4, no dashes
   Color current_color{0, 0, 0, 1};  // the `color` property, used by currentColor
   bool visible = true;
   // Not inherited in SVG; the product down the tree approximates group opacity.
   float opacity = 1;
 };
 
-enum class Property { Unknown, Fill, FillOpacity, FillRule, Opacity, Color, Display, Visibility, Unsupported };
+enum class Property {
+  Unknown,
+  Fill,
+  FillOpacity,
+  FillRule,
+  Stroke,
+  StrokeOpacity,
+  StrokeWidth,
+  StrokeLinecap,
+  StrokeLinejoin,
+  StrokeMiterlimit,
+  StrokeDasharray,
+  StrokeDashoffset,
+  Opacity,
+  Color,
+  Display,
+  Visibility,
+  Unsupported
+};
 
 Property property_of(std::string_view name, bool css) {
   // Presentation attributes are case-sensitive XML names; CSS property names are not.
@@ -94,11 +115,19 @@ Property property_of(std::string_view name, bool css) {
   if (is("fill")) return Property::Fill;
   if (is("fill-opacity")) return Property::FillOpacity;
   if (is("fill-rule")) return Property::FillRule;
+  if (is("stroke")) return Property::Stroke;
+  if (is("stroke-opacity")) return Property::StrokeOpacity;
+  if (is("stroke-width")) return Property::StrokeWidth;
+  if (is("stroke-linecap")) return Property::StrokeLinecap;
+  if (is("stroke-linejoin")) return Property::StrokeLinejoin;
+  if (is("stroke-miterlimit")) return Property::StrokeMiterlimit;
+  if (is("stroke-dasharray")) return Property::StrokeDasharray;
+  if (is("stroke-dashoffset")) return Property::StrokeDashoffset;
   if (is("opacity")) return Property::Opacity;
   if (is("color")) return Property::Color;
   if (is("display")) return Property::Display;
   if (is("visibility")) return Property::Visibility;
-  if (is("stroke") || is("clip-path") || is("mask") || is("filter")) return Property::Unsupported;
+  if (is("clip-path") || is("mask") || is("filter")) return Property::Unsupported;
   return Property::Unknown;
 }
 
@@ -267,6 +296,38 @@ class Builder {
     return Paint{PaintKind::Solid, *color};
   }
 
+  /// A length property value (units and percentages as for attributes; percentages of the normalized diagonal).
+  double length_property(std::string_view v, std::size_t offset, std::string_view property) const {
+    double out = 0;
+    if (!parse_length(v, Axis::Other, out)) fail(offset, "invalid length for " + std::string(property) + ": " + quote(v));
+    return out;
+  }
+
+  /// stroke-dasharray: "none" or lengths separated by commas and/or whitespace. SVG: a negative value makes the
+  /// list invalid, which draws a solid stroke (warning). Odd counts and all-zero lists are the stroker's business.
+  std::vector<double> parse_dash_array(std::string_view v, std::size_t offset) {
+    if (v == "none") return {};
+    std::vector<double> dashes;
+    std::size_t pos = 0;
+    if (v.empty()) fail(offset, "invalid stroke-dasharray '' (expected none or a list of lengths)");
+    while (pos < v.size()) {
+      const std::size_t start = pos;
+      while (pos < v.size() && !detail::is_wsp(v[pos]) && v[pos] != ',') ++pos;
+      double length = 0;
+      if (pos == start || !parse_length(v.substr(start, pos - start), Axis::Other, length)) {
+        fail(offset + start, "invalid stroke-dasharray " + quote(v) + " (expected none or a list of lengths)");
+      }
+      dashes.push_back(length);
+      if (detail::skip_comma_wsp(v, pos) && pos == v.size())
+        fail(offset + pos, "invalid stroke-dasharray " + quote(v) + ": expected a length after ','");
+    }
+    if (std::any_of(dashes.begin(), dashes.end(), [](double d) { return d < 0; })) {
+      warn(offset, "negative value in stroke-dasharray " + quote(v) + ", the stroke is drawn solid");
+      return {};
+    }
+    return dashes;
+  }
+
   // ---- properties ----
 
   /// Applies one declaration to `style`. Returns false for display:none.
@@ -287,6 +348,49 @@ class Builder {
           style.fill_rule = FillRule::EvenOdd;
         else
           fail(offset, "invalid fill-rule " + quote(v) + " (expected nonzero or evenodd)");
+        break;
+      case Property::Stroke:
+        style.stroke = parse_paint(v, offset, "stroke");
+        break;
+      case Property::StrokeOpacity:
+        style.stroke_opacity = parse_opacity(v, offset, "stroke-opacity");
+        break;
+      case Property::StrokeWidth: {
+        const double width = length_property(v, offset, "stroke-width");
+        if (width < 0)
+          warn(offset, "negative stroke-width " + quote(v) + ", ignored");
+        else
+          style.stroke_style.width = width;
+        break;
+      }
+      case Property::StrokeLinecap:
+        if (!parse_line_cap(v, style.stroke_style.cap))
+          fail(offset, "invalid stroke-linecap " + quote(v) + " (expected butt, round or square)");
+        break;
+      case Property::StrokeLinejoin:
+        if (v == "miter-clip" || v == "arcs") {
+          warn(offset, "stroke-linejoin " + quote(v) + " is not supported yet, using miter");
+          style.stroke_style.join = LineJoin::Miter;
+        } else if (!parse_line_join(v, style.stroke_style.join)) {
+          fail(offset, "invalid stroke-linejoin " + quote(v) + " (expected miter, round or bevel)");
+        }
+        break;
+      case Property::StrokeMiterlimit: {
+        std::size_t pos = 0;
+        double limit = 0;
+        if (scan_number(v, pos, limit) != NumberScan::Ok || pos != v.size())
+          fail(offset, "invalid stroke-miterlimit " + quote(v) + " (expected a number)");
+        if (limit < 1)
+          warn(offset, "stroke-miterlimit " + quote(v) + " is below 1, ignored");
+        else
+          style.stroke_style.miter_limit = limit;
+        break;
+      }
+      case Property::StrokeDasharray:
+        style.stroke_style.dashes = parse_dash_array(v, offset);
+        break;
+      case Property::StrokeDashoffset:
+        style.stroke_style.dash_offset = length_property(v, offset, "stroke-dashoffset");
         break;
       case Property::Opacity:
         own_opacity = parse_opacity(v, offset, "opacity");
@@ -509,7 +613,7 @@ class Builder {
     }
   }
 
-  /// The path of a basic shape or <path> element, in user space (empty when there is nothing to fill).
+  /// The path of a basic shape or <path> element, in user space (empty when there is nothing to draw).
   Path shape_path(pugi::xml_node node, std::string_view name) {
     Path path;
     const std::size_t at = element_offset(node);
@@ -575,19 +679,51 @@ class Builder {
       if (numbers.size() % 2 != 0) fail(value_offset(attr, pos), "points: odd number of coordinates");
       for (std::size_t i = 0; i + 1 < numbers.size(); i += 2) points.push_back({numbers[i], numbers[i + 1]});
       if (points.size() >= 2) build(at, [&] { path.add_polygon(points, name == "polygon"); });
+    } else if (name == "line") {
+      const Point p0{get("x1", Axis::X).value_or(0), get("y1", Axis::Y).value_or(0)};
+      const Point p1{get("x2", Axis::X).value_or(0), get("y2", Axis::Y).value_or(0)};
+      build(at, [&] { path.move_to(p0).line_to(p1); });
     }
-    // <line> encloses no area: nothing to fill.
     return path;
   }
 
-  void add_fill(Path&& path, const Style& style, const Affine& ctm) {
-    if (!style.visible || style.fill.kind == PaintKind::None) return;
+  /// The colour of a paint with its opacity and the element's opacity folded in; nothing when invisible.
+  static std::optional<Color> paint_color(const Paint& paint, float paint_opacity, const Style& style) {
+    if (!style.visible || paint.kind == PaintKind::None) return std::nullopt;
+    Color color = paint.kind == PaintKind::CurrentColor ? style.current_color : paint.color;
+    color.a *= paint_opacity * style.opacity;
+    if (!(color.a > 0)) return std::nullopt;
+    return color;
+  }
+
+  /// Emits the fill (unless `line`: a <line> encloses no area), then the stroke of a shape.
+  void add_shape(Path&& path, bool line, const Style& style, const Affine& ctm) {
     const auto verbs = path.verbs();
     if (std::all_of(verbs.begin(), verbs.end(), [](Verb v) { return v == Verb::Move; })) return;  // nothing drawn
-    Color color = style.fill.kind == PaintKind::CurrentColor ? style.current_color : style.fill.color;
-    color.a *= style.fill_opacity * style.opacity;
-    if (!(color.a > 0)) return;
-    doc_.fills.push_back(FillItem{std::move(path), ctm, color, style.fill_rule});
+    const std::optional<Color> fill = line ? std::nullopt : paint_color(style.fill, style.fill_opacity, style);
+    const std::optional<Color> stroke =
+        style.stroke_style.width > 0 ? paint_color(style.stroke, style.stroke_opacity, style) : std::nullopt;
+    if (fill) {
+      DrawItem item;
+      item.kind = DrawItem::Kind::Fill;
+      if (stroke)
+        item.path = path;
+      else
+        item.path = std::move(path);
+      item.transform = ctm;
+      item.color = *fill;
+      item.rule = style.fill_rule;
+      doc_.items.push_back(std::move(item));
+    }
+    if (stroke) {
+      DrawItem item;
+      item.kind = DrawItem::Kind::Stroke;
+      item.path = std::move(path);
+      item.transform = ctm;
+      item.color = *stroke;
+      item.stroke = style.stroke_style;
+      doc_.items.push_back(std::move(item));
+    }
   }
 
   void element(pugi::xml_node node, const Style& parent, const Affine& parent_ctm, int depth) {
@@ -635,7 +771,7 @@ class Builder {
       }
       return;
     }
-    add_fill(shape_path(node, name), style, ctm);
+    add_shape(shape_path(node, name), name == "line", style, ctm);
   }
 
   std::string_view text_;

@@ -1,15 +1,72 @@
 // svg_subset: drawing a parsed Document with vraster.
+#include <cmath>
 #include <cstdint>
+#include <type_traits>
+#include <vector>
 
 #include "svg_subset/svg.hpp"
 
 namespace vraster::svg {
 
+namespace {
+
+/// The dash pattern as dash_polylines wants it (even count, positive sum), or empty for a solid stroke: an odd
+/// count is repeated once; a negative or non-finite value or a zero sum means solid (as stroke_path does).
+std::vector<double> normalized_dashes(const std::vector<double>& dashes) {
+  double sum = 0;
+  for (const double d : dashes) {
+    if (!(d >= 0) || !std::isfinite(d)) return {};
+    sum += d;
+  }
+  if (!(sum > 0) || !std::isfinite(sum)) return {};
+  std::vector<double> pattern = dashes;
+  if (pattern.size() % 2 != 0) pattern.insert(pattern.end(), dashes.begin(), dashes.end());
+  return pattern;
+}
+
+/// The centre lines of a stroke for hairline drawing: the path itself, or its dashes (cut in user space).
+Path hairline_centre_lines(const DrawItem& item, double device_tolerance) {
+  const std::vector<double> pattern = normalized_dashes(item.stroke.dashes);
+  if (pattern.empty()) return item.path;
+  std::vector<StrokePolyline> pieces, dashed;
+  flatten_for_stroke(item.path, user_tolerance(item.transform, device_tolerance), pieces);
+  dash_polylines(pieces, pattern, item.stroke.dash_offset, dashed);
+  Path lines;
+  for (const StrokePolyline& pl : dashed) {
+    if (pl.points.size() < 2) continue;  // dots have no length: nothing for a hairline
+    lines.move_to(pl.points[0]);
+    for (std::size_t i = 1; i < pl.points.size(); ++i) lines.line_to(pl.points[i]);
+    if (pl.closed) lines.close();
+  }
+  return lines;
+}
+
+template <class T>
+void draw_hairline(BasicImage<T>& image, const DrawItem& item, HairlineMode mode, double tolerance) {
+  if (!item.transform.is_finite()) return;
+  const Path lines = hairline_centre_lines(item, tolerance);
+  if constexpr (std::is_same_v<T, std::uint8_t>) {
+    draw_hairlines(image, lines, item.transform, item.color, mode);
+  } else {
+    SolidCompositor<T> compositor(image, item.color);
+    hairline_coverage(lines, item.transform, mode, image.width, image.height, compositor);
+  }
+}
+
+}  // namespace
+
 template <class T>
 void render(const Document& doc, BasicImage<T>& image, const RenderSettings& settings, Renderer& renderer) {
-  for (const FillItem& item : doc.fills) {
-    const FillOptions options{settings.rule_override.value_or(item.rule), settings.aa, settings.tolerance};
-    renderer.fill(image, item.path, item.transform, item.color, options);
+  for (const DrawItem& item : doc.items) {
+    if (item.is_fill()) {
+      const FillOptions options{settings.rule_override.value_or(item.rule), settings.aa, settings.tolerance};
+      renderer.fill(image, item.path, item.transform, item.color, options);
+    } else if (settings.hairline) {
+      draw_hairline(image, item, *settings.hairline, settings.tolerance);
+    } else {
+      const StrokeRenderOptions options{settings.aa, settings.tolerance, HairlineMode::Analytic, &renderer};
+      stroke_path(image, item.path, item.transform, item.stroke, item.color, options);
+    }
   }
 }
 

@@ -19,7 +19,9 @@
 //     trapezoids are clipped to each pixel (Sutherland–Hodgman) and measured by the shoelace formula.
 //
 // Winding convention (the engine's): a segment running downward (increasing y) counts +1 for points right of it.
-// Contours are closed implicitly. Cost is O(n^2) per pixel (method 1) or per image (method 2) — test sizes only.
+// Contours are closed implicitly. Internally long double (11 more bits than the double inputs), so features of one
+// double ulp (an edge tilted by one ulp, a crossing within an ulp of a vertex) are resolved. Cost is O(n^2) per
+// pixel (method 1) or per image (method 2) — test sizes only.
 #pragma once
 
 #include <string>
@@ -32,6 +34,14 @@
 
 namespace vraster::test::exact {
 
+/// True in optimized builds without sanitizers. Slow builds (Debug, sanitizers) run smaller inputs of the same kind,
+/// so that the suites stay within their time budget there too.
+#if defined(NDEBUG) && !defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kOptimizedBuild = true;
+#else
+inline constexpr bool kOptimizedBuild = false;
+#endif
+
 /// Whether the rule holds for winding number w (EvenOdd, NonZero, Positive, Negative, AbsGeq2).
 bool rule_holds(FillRule rule, int w);
 
@@ -39,8 +49,10 @@ bool rule_holds(FillRule rule, int w);
 std::vector<double> scan_coverage(const std::vector<Polygon>& contours, FillRule rule, int width, int height);
 
 /// Method 2. Coverage grid under any rule, NonExterior included. `gap_tolerance`: two trapezoids are connected
-/// through a slab boundary only when their common free stretch is longer than this (so that the rounding of
-/// computed intersection heights never opens a passage through a crossing point).
+/// through a slab boundary only when their common free stretch is longer than this plus the x uncertainty of the
+/// segments bounding it (|dx/dy| times the rounding of the boundary height), so that the rounding of computed
+/// intersection heights never opens a passage through a crossing point. Consequence: gaps narrower than that
+/// (e.g. one double ulp) count as closed.
 std::vector<double> trapezoid_coverage(const std::vector<Polygon>& contours, FillRule rule, int width, int height,
                                        double gap_tolerance = 1e-12);
 

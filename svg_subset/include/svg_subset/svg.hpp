@@ -4,6 +4,7 @@
 // -> Document (flat, fully resolved draw items in paint order) -> render() through vraster::Renderer.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -15,6 +16,7 @@
 #include "vraster/paint.hpp"
 #include "vraster/path.hpp"
 #include "vraster/raster.hpp"
+#include "vraster/stroke.hpp"
 
 namespace vraster::svg {
 
@@ -56,19 +58,25 @@ std::optional<Color> parse_color(std::string_view text, bool& is_none);
 /// Parses an SVG transform list ("translate(1 2) rotate(30)"); returns false on a syntax error.
 bool parse_transform(std::string_view text, Affine& out);
 
-/// One filled shape, fully resolved: user-space path, its transform to device pixels, paint and rule.
-struct FillItem {
+/// One fill or stroke of a shape, fully resolved: user-space path, its transform to device pixels and paint.
+/// A shape with both gives two items, fill first (SVG's default paint-order).
+struct DrawItem {
+  enum class Kind : std::uint8_t { Fill, Stroke };
+  Kind kind = Kind::Fill;
   Path path;
   Affine transform;  ///< user space -> device pixels (viewBox and every ancestor transform composed)
-  Color color;       ///< opacity and fill-opacity already folded into color.a
-  FillRule rule = FillRule::NonZero;
+  Color color;       ///< opacity and fill-opacity / stroke-opacity already folded into color.a
+  FillRule rule = FillRule::NonZero;  ///< fills only
+  StrokeStyle stroke;                 ///< strokes only (user-space lengths; width > 0)
+  bool is_fill() const { return kind == Kind::Fill; }
+  bool is_stroke() const { return kind == Kind::Stroke; }
 };
 
 /// A parsed document: its pixel size and the items in paint order.
 struct Document {
   int width = 0;
   int height = 0;
-  std::vector<FillItem> fills;
+  std::vector<DrawItem> items;
   std::vector<std::string> warnings;  ///< "LINE:COLUMN: message" for things ignored
 };
 
@@ -83,6 +91,9 @@ struct RenderSettings {
   AntiAlias aa = AntiAlias::Analytic;
   double tolerance = kDefaultTolerance;
   std::optional<FillRule> rule_override;
+  /// When set, every stroke is drawn as a 1-device-pixel hairline with this algorithm (dashes kept; width, caps
+  /// and joins ignored) instead of a geometric stroke.
+  std::optional<HairlineMode> hairline;
 };
 
 /// Draws every item of `doc` onto `image` (which should be doc.width x doc.height) in order.
