@@ -140,6 +140,76 @@ void BoundarySweep::check_pair(std::size_t p, double y) {
   push_event({yc, kCrossing, a, b});
 }
 
+// Local minimum: edges a and b start at the same point with opposite windings. Inserts them next to each other
+// where that point falls in the order. Returns false (nothing changed) when the general path is needed.
+template <class UpdateWeight>
+bool BoundarySweep::insert_turning_pair(std::uint32_t a, std::uint32_t b, double y, bool track_faces, State& state,
+                                        UpdateWeight& update_weight) {
+  const std::vector<Edge>& edges = *edges_;
+  const Edge &ea = edges[a], &eb = edges[b];
+  if (ea.x0 != eb.x0 || ea.winding + eb.winding != 0) return false;
+  if (eb.dxdy < ea.dxdy) std::swap(a, b);  // the one heading left goes left
+  const double x = edges[a].x0;
+  // First position whose edge lies right of x at y (ties: an edge through the very point makes the general path
+  // decide, since its slope order against the pair matters).
+  std::size_t lo = 0, hi = order_.size();
+  while (lo < hi) {
+    const std::size_t mid = (lo + hi) / 2;
+    if (x_of(edges[order_[mid]], y) < x) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  if (lo < order_.size() && x_of(edges[order_[lo]], y) == x) return false;
+  const std::size_t p = lo;
+  const int wl = p == 0 ? 0 : left_winding_[order_[p - 1]] + edges[order_[p - 1]].winding;
+  const std::int32_t gap = p < order_.size() ? left_face_[order_[p]] : 0;
+  order_.insert(order_.begin() + static_cast<std::ptrdiff_t>(p), {a, b});
+  for (std::size_t q = p; q < order_.size(); ++q) pos_[order_[q]] = static_cast<std::int32_t>(q);
+  left_winding_[a] = wl;
+  left_winding_[b] = wl + edges[a].winding;
+  left_face_[a] = gap;  // the gap the pair opens in keeps its face on both sides
+  left_face_[b] = track_faces ? state.faces.make() : 0;
+  for (std::uint32_t e : {a, b}) {
+    since_[e] = y;
+    weight_[e] = 0;
+    push_event({edges[e].y1, kEnd, e, 0});
+  }
+  update_weight(p, y);
+  update_weight(p + 1, y);
+  if (p > 0) check_pair(p - 1, y);
+  if (p + 2 < order_.size()) check_pair(p + 1, y);
+  return true;
+}
+
+// Local maximum: neighbours a and b of opposite winding end at the same point. Removes them; the faces on either
+// side join. Returns false (nothing changed) when the general path is needed.
+template <class Emit>
+bool BoundarySweep::remove_turning_pair(std::uint32_t a, std::uint32_t b, double y, bool track_faces, State& state,
+                                        Emit& emit) {
+  const std::vector<Edge>& edges = *edges_;
+  if (pos_[b] < pos_[a]) std::swap(a, b);
+  if (pos_[a] < 0 || pos_[b] != pos_[a] + 1) return false;
+  if (edges[a].x1 != edges[b].x1 || edges[a].winding + edges[b].winding != 0) return false;
+  const auto p = static_cast<std::size_t>(pos_[a]);
+  // A neighbour through the very point closes the face beside the pair there: the general path decides.
+  const double x = edges[a].x1;
+  if (p > 0 && !(x_of(edges[order_[p - 1]], y) < x)) return false;
+  if (p + 2 < order_.size() && !(x_of(edges[order_[p + 2]], y) > x)) return false;
+  emit(a, y);
+  emit(b, y);
+  if (track_faces) {
+    const std::int32_t right = p + 2 < order_.size() ? left_face_[order_[p + 2]] : 0;
+    state.faces.unite(left_face_[a], right);
+  }
+  order_.erase(order_.begin() + static_cast<std::ptrdiff_t>(p), order_.begin() + static_cast<std::ptrdiff_t>(p) + 2);
+  pos_[a] = pos_[b] = -1;
+  for (std::size_t q = p; q < order_.size(); ++q) pos_[order_[q]] = static_cast<std::int32_t>(q);
+  if (p > 0 && p < order_.size()) check_pair(p - 1, y);
+  return true;
+}
+
 template <class Filled>
 void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>& horizontals, bool track_faces,
                         State& state, Filled&& filled, std::vector<Edge>* out) {
@@ -299,6 +369,35 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
         dirty_[s] = 0;
       }
       continue;
+    }
+
+    // Turning vertices: local minima (two edges of opposite winding start at one point) and local maxima (two
+    // neighbours of opposite winding end at one point). The windings of all other edges stay as they are, so only
+    // positions shift: no rebuild. Several may share a height (a circle's mirror images); whatever does not fit
+    // these patterns is left to the general path below.
+    if (blocked.empty() && replaced_.empty()) {
+      for (std::size_t m = 0; m + 1 < ends.size(); ++m) {  // ends are sorted by x1
+        if (consumed_[m] || consumed_[m + 1] || edges[ends[m]].x1 != edges[ends[m + 1]].x1) continue;
+        if (remove_turning_pair(ends[m], ends[m + 1], y, track_faces, state, emit)) {
+          consumed_[m] = consumed_[m + 1] = 1;
+          unmatched_ends -= 2;
+          ++m;
+        }
+      }
+      std::sort(new_edges.begin(), new_edges.end(), [&](std::uint32_t i, std::uint32_t j) {
+        return edges[i].x0 < edges[j].x0 || (edges[i].x0 == edges[j].x0 && edges[i].dxdy < edges[j].dxdy);
+      });
+      std::size_t kept = 0;
+      for (std::size_t k = 0; k < new_edges.size(); ++k) {
+        if (k + 1 < new_edges.size() && edges[new_edges[k]].x0 == edges[new_edges[k + 1]].x0 &&
+            insert_turning_pair(new_edges[k], new_edges[k + 1], y, track_faces, state, update_weight)) {
+          ++k;
+          continue;
+        }
+        new_edges[kept++] = new_edges[k];
+      }
+      new_edges.resize(kept);
+      if (unmatched_ends == 0 && new_edges.empty()) continue;
     }
 
     // General case: rebuild the order at y, O(active edges).

@@ -38,6 +38,11 @@ class BoundarySweep {
   void run(const std::vector<Edge>& edges, const std::vector<Edge>& horizontals, bool track_faces, State& state,
            Filled&& filled, std::vector<Edge>* out);
 
+  template <class UpdateWeight>
+  bool insert_turning_pair(std::uint32_t a, std::uint32_t b, double y, bool track_faces, State& state,
+                           UpdateWeight& update_weight);
+  template <class Emit>
+  bool remove_turning_pair(std::uint32_t a, std::uint32_t b, double y, bool track_faces, State& state, Emit& emit);
   void check_pair(std::size_t left_pos, double y);
   void push_event(const Event& e);
   bool refill(double max_y);
