@@ -239,8 +239,10 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
   if (bucketed_) {
     row_base_ = static_cast<std::int64_t>(std::floor(y_lo));
     const auto rows = static_cast<std::size_t>(static_cast<std::int64_t>(std::floor(y_hi)) - row_base_ + 2);
-    for (auto& b : buckets_) b.clear();
+    // A finished sweep leaves every bucket empty (each is swapped into the heap before use); clear just the rows
+    // this one needs, in case.
     if (buckets_.size() < rows) buckets_.resize(rows);
+    for (std::size_t r = 0; r < rows; ++r) buckets_[r].clear();
     current_row_ = -1;
     lowest_pending_ = 0;
   }
