@@ -27,7 +27,13 @@ Pixels sorted(Pixels v) {
 
 std::string show(const Pixels& v) {
   std::string s;
-  for (IPoint p : v) s += "(" + std::to_string(p.x) + "," + std::to_string(p.y) + ")";
+  for (IPoint p : v) {  // appended piece by piece: GCC 12's -Wrestrict misfires on "literal" + std::string&&
+    s += '(';
+    s += std::to_string(p.x);
+    s += ',';
+    s += std::to_string(p.y);
+    s += ')';
+  }
   return s;
 }
 

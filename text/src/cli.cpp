@@ -1,6 +1,8 @@
 // `vraster text`: text -> layout -> image sized to fit -> PNG.
 #include "vraster_text/cli.hpp"
 
+#include "vraster/fxaa.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <iostream>
@@ -19,10 +21,11 @@ namespace {
 constexpr const char* kUsage =
     "usage: vraster text \"TEXT\" -o OUT.png [--font FILE]... [--face-index N] [--size PX] [--width W]\n"
     "                    [--align left|center|right] [--line-height PX] [--color C] [--background C]\n"
-    "                    [--aa none|analytic|exact] [--features F] [--lang L] [--script S] [--dir auto|ltr|rtl]\n"
+    "                    [--aa MODE] [--features F] [--lang L] [--script S] [--dir auto|ltr|rtl]\n"
     "                    [--hinting none|light] [--margin PX]\n"
     "  --font may be given more than once: later fonts are fallbacks; the embedded Noto Sans is the last one.\n"
-    "  C: #rgb, #rrggbb, #rrggbbaa, black, white, red, green, blue, gray, transparent\n";
+    "  C: #rgb, #rrggbb, #rrggbbaa, black, white, red, green, blue, gray, transparent\n"
+    "  MODE: none | analytic | exact | ssaa-2|4|8|16 | msaa-4|8|16 | fxaa\n";
 
 struct UsageError {
   std::string message;
@@ -193,6 +196,7 @@ int run_text_command(int argc, char** argv) {
     // Integer translation: glyphs keep the subpixel phases layout gave them.
     const Affine place = Affine::translate(std::round(a.margin - box.x0), std::round(a.margin - box.y0));
     renderer.draw(image, layout, a.color, place, a.render);
+    if (a.render.aa == AntiAlias::Fxaa) fxaa(image);  // the rasterizer drew it aliased; the filter comes after
     write_png(a.output, image);
     return 0;
   } catch (const UsageError& e) {

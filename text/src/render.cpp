@@ -34,8 +34,9 @@ class MaskSink final : public CoverageSink {
 
 std::uint32_t options_code(const GlyphRenderOptions& o, int phases) {
   const auto tol = static_cast<std::uint32_t>(std::clamp(std::lround(o.tolerance * 1000.0), 0l, 0xFFFFl));
-  return static_cast<std::uint32_t>(o.aa) | static_cast<std::uint32_t>(o.rule) << 2 |
-         static_cast<std::uint32_t>(o.hinting) << 5 | static_cast<std::uint32_t>(phases) << 7 | tol << 12;
+  // aa: 4 bits (11 modes), rule: 3, hinting: 2, phases (up to 16): 5, tolerance in 1/1000 px: 16 -> 30 bits.
+  return static_cast<std::uint32_t>(o.aa) | static_cast<std::uint32_t>(o.rule) << 4 |
+         static_cast<std::uint32_t>(o.hinting) << 7 | static_cast<std::uint32_t>(phases) << 9 | tol << 14;
 }
 
 bool axis_aligned(const Affine& m) { return m.b == 0 && m.c == 0 && m.a > 0 && m.d > 0; }
