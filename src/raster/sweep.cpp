@@ -220,9 +220,89 @@ VRASTER_CLONES void sweep_analytic_rows(const std::vector<Edge>& edges, const st
   }
 }
 
+// Small paths: every edge walks its own rows into a dense block of cells (the path's rows x columns), then one
+// running sum per row. The cell arithmetic is the row sweep's; what it saves is the per-row bookkeeping (edge
+// table, active list, touched bits), which dominates glyph-sized paths. Coordinates are shifted by the block's
+// integer left column, which is exact for doubles, so the cell fractions are the same numbers.
+template <FillRule R>
+VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns,
+                                     int width, double* block, float* cov, CoverageSink& sink) {
+  const double shift = x_base;
+  for (const Edge& e : edges) {
+    const int r0 = std::max(static_cast<int>(std::floor(e.y0)), y_min);
+    const int r1 = std::min(static_cast<int>(std::ceil(e.y1)), y_max);
+    for (int y = r0; y < r1; ++y) {
+      const double ya = std::max(e.y0, static_cast<double>(y)), yb = std::min(e.y1, y + 1.0);
+      if (!(yb > ya)) continue;
+      const double xa = ya == e.y0 ? e.x0 : e.x_at(ya);
+      const double xb = yb == e.y1 ? e.x1 : e.x_at(yb);
+      accumulate_piece(block + static_cast<std::size_t>(y - y_min) * columns, xa - shift, xb - shift,
+                       (yb - ya) * e.winding);
+    }
+  }
+  const int visible = std::min(columns, width - x_base);  // the last cells may lie at or right of the image edge
+  for (int y = y_min; y < y_max; ++y) {
+    double* row = block + static_cast<std::size_t>(y - y_min) * columns;
+    double sum = 0;
+    for (int c = 0; c < columns; ++c) {
+      sum += row[c];
+      row[c] = 0;
+      cov[c] = coverage_of<R>(sum);
+    }
+    int a = 0, b = visible;
+    while (a < b && cov[a] == 0) ++a;
+    while (b > a && cov[b - 1] == 0) --b;
+    if (b > a) sink.row(y, x_base + a, x_base + b, cov + a);
+    // Edges right of the image were dropped, so the sum need not return to 0: it holds to the row's end.
+    if (x_base + columns < width) {
+      const float c = coverage_of<R>(sum);
+      if (c > 0) sink.span(y, x_base + columns, width, c);
+    }
+  }
+}
+
 }  // namespace
 
+bool Rasterizer::sweep_dense(FillRule rule, int width, CoverageSink& sink) {
+  if (edges_.empty() || dense_limit_ <= 0) return false;
+  double x_lo = edges_[0].x0, x_hi = x_lo;
+  for (const Edge& e : edges_) {
+    x_lo = std::min({x_lo, e.x0, e.x1});
+    x_hi = std::max({x_hi, e.x0, e.x1});
+  }
+  const int x_base = static_cast<int>(x_lo);  // x >= 0 after clipping: truncation is floor
+  // Columns: every cell an edge can write (x_hi's cell and the one after it), so the running sum returns to 0
+  // inside the block wherever the path closes inside the image.
+  const int columns = static_cast<int>(x_hi) - x_base + 2;
+  const std::int64_t cells = static_cast<std::int64_t>(columns) * (y_max_ - y_min_);
+  if (cells > dense_limit_) return false;
+  if (dense_block_.size() < static_cast<std::size_t>(cells)) dense_block_.assign(static_cast<std::size_t>(cells), 0.0);
+  if (row_coverage_.size() < static_cast<std::size_t>(columns)) row_coverage_.resize(static_cast<std::size_t>(columns));
+  double* block = dense_block_.data();
+  float* cov = row_coverage_.data();
+  switch (rule) {
+    case FillRule::EvenOdd:
+      sweep_dense_rows<FillRule::EvenOdd>(edges_, y_min_, y_max_, x_base, columns, width, block, cov, sink);
+      break;
+    case FillRule::Positive:
+      sweep_dense_rows<FillRule::Positive>(edges_, y_min_, y_max_, x_base, columns, width, block, cov, sink);
+      break;
+    case FillRule::Negative:
+      sweep_dense_rows<FillRule::Negative>(edges_, y_min_, y_max_, x_base, columns, width, block, cov, sink);
+      break;
+    case FillRule::AbsGeq2:
+      sweep_dense_rows<FillRule::AbsGeq2>(edges_, y_min_, y_max_, x_base, columns, width, block, cov, sink);
+      break;
+    case FillRule::NonZero:
+    case FillRule::NonExterior:
+      sweep_dense_rows<FillRule::NonZero>(edges_, y_min_, y_max_, x_base, columns, width, block, cov, sink);
+      break;
+  }
+  return true;
+}
+
 void Rasterizer::sweep_analytic(FillRule rule, int width, CoverageSink& sink) {
+  if (sweep_dense(rule, width, sink)) return;
   bucket_edges(false);
   const std::size_t cells = static_cast<std::size_t>(width) + 2;
   if (accumulation_.size() < cells) accumulation_.assign(cells, 0.0);
