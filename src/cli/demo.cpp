@@ -30,6 +30,14 @@ std::string_view demo_svg() {
     <path d="M0 0L180 -100L180 -98.6Z M0 0L180 -80L180 -79.3Z M0 0L180 -60L180 -59.65Z M0 0L180 -40L180 -39.8Z
              M0 0L180 -20L180 -19.9Z M0 0L180 0L180 0.05Z" fill="#1b2631"/>
   </g>
+  <!-- strokes: joins, caps, dashes, and widths below a pixel that thin out instead of vanishing -->
+  <path d="M370 250l30-30 30 30 30-30 30 30" fill="none" stroke="#c0392b" stroke-width="9" stroke-linejoin="round"
+        stroke-linecap="round"/>
+  <path d="M370 285l30-30 30 30 30-30 30 30" fill="none" stroke="#2c3e50" stroke-width="9" stroke-linejoin="miter"
+        stroke-linecap="square"/>
+  <path d="M540 140c40 30-40 60 0 90s-40 60 0 90" fill="none" stroke="#8e44ad" stroke-width="4"
+        stroke-dasharray="12 6 2 6" stroke-linecap="round"/>
+  <path d="M20 385H250M20 390H250M20 395H250" fill="none" stroke="#1b2631" stroke-width="0.3"/>
   <!-- concentric rings -->
   <path d="M300 300m-70 0a70 70 0 1 0 140 0a70 70 0 1 0-140 0zm10 0a60 60 0 1 1 120 0a60 60 0 1 1-120 0z
            m10 0a50 50 0 1 0 100 0a50 50 0 1 0-100 0zm10 0a40 40 0 1 1 80 0a40 40 0 1 1-80 0z
