@@ -22,6 +22,20 @@ enum class FillRule : std::uint8_t {
   AbsGeq2,      ///< |w| >= 2
 };
 
+/// Whether a point of winding number `w` is filled under a winding rule. NonExterior is not a function of the
+/// winding number: the rasterizer first reduces it to boundary pieces filled NonZero, which is what it answers here.
+constexpr bool winding_fills(FillRule rule, int w) {
+  switch (rule) {
+    case FillRule::EvenOdd: return (w & 1) != 0;
+    case FillRule::NonZero: return w != 0;
+    case FillRule::Positive: return w > 0;
+    case FillRule::Negative: return w < 0;
+    case FillRule::AbsGeq2: return w >= 2 || w <= -2;
+    case FillRule::NonExterior: return w != 0;
+  }
+  return false;
+}
+
 /// How coverage is computed for a pixel.
 enum class AntiAlias : std::uint8_t {
   None,      ///< one sample at the pixel centre, top-left rule; coverage is 0 or 1

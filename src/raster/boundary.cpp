@@ -19,17 +19,6 @@
 namespace vraster::detail {
 namespace {
 
-bool rule_holds(FillRule rule, int w) {
-  switch (rule) {
-    case FillRule::EvenOdd: return (w & 1) != 0;
-    case FillRule::NonZero: return w != 0;
-    case FillRule::Positive: return w > 0;
-    case FillRule::Negative: return w < 0;
-    case FillRule::AbsGeq2: return w >= 2 || w <= -2;
-    case FillRule::NonExterior: return w != 0;
-  }
-  return false;
-}
 
 // x of an edge at height y, exact at its end points.
 constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
@@ -505,7 +494,7 @@ void BoundarySweep::extract(const std::vector<Edge>& edges, const std::vector<Ed
   State state;
   if (rule != FillRule::NonExterior) {
     static const std::vector<Edge> kNone;
-    run(edges, kNone, false, state, [rule](int w, std::int32_t) { return rule_holds(rule, w); }, &out);
+    run(edges, kNone, false, state, [rule](int w, std::int32_t) { return winding_fills(rule, w); }, &out);
     return;
   }
   // First pass: which faces reach the outside. Second pass: the same sweep (same face ids), writing the pieces

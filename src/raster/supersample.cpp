@@ -32,17 +32,6 @@ constexpr std::array<int, 4> kPerm4{1, 3, 0, 2};
 constexpr std::array<int, 8> kPerm8{7, 2, 4, 0, 6, 3, 1, 5};
 constexpr std::array<int, 16> kPerm16{1, 8, 4, 11, 15, 7, 3, 12, 0, 9, 5, 13, 2, 10, 6, 14};
 
-bool inside(FillRule rule, int w) {
-  switch (rule) {
-    case FillRule::EvenOdd: return (w & 1) != 0;
-    case FillRule::NonZero: return w != 0;
-    case FillRule::Positive: return w > 0;
-    case FillRule::Negative: return w < 0;
-    case FillRule::AbsGeq2: return w >= 2 || w <= -2;
-    case FillRule::NonExterior: return w != 0;  // only after boundary extraction
-  }
-  return false;
-}
 
 struct Crossing {
   double x;
@@ -195,7 +184,7 @@ void sweep(const std::vector<Edge>& edges, int y_min, int y_max, FillRule rule, 
       double start = 0;
       for (const Crossing& c : s.crossings) {
         w += edges[c.edge].winding;
-        const bool now = inside(rule, w);
+        const bool now = winding_fills(rule, w);
         if (now == in) continue;
         if (now) {
           start = c.x;

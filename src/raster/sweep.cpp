@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <type_traits>
 
 #include "raster/boundary.hpp"
 #include "raster/supersample.hpp"
@@ -16,17 +17,6 @@
 namespace vraster {
 namespace {
 
-bool inside(FillRule rule, int w) {
-  switch (rule) {
-    case FillRule::EvenOdd: return (w & 1) != 0;
-    case FillRule::NonZero: return w != 0;
-    case FillRule::Positive: return w > 0;
-    case FillRule::Negative: return w < 0;
-    case FillRule::AbsGeq2: return w >= 2 || w <= -2;
-    case FillRule::NonExterior: return w != 0;  // reached only after the boundary has been extracted
-  }
-  return false;
-}
 
 // Coverage from the accumulated signed area s (the winding number, averaged over the pixel).
 // Exact where one pixel sees a single winding transition; an approximation where edges cross inside a pixel.
@@ -220,6 +210,19 @@ VRASTER_CLONES void sweep_analytic_rows(const std::vector<Edge>& edges, const st
   }
 }
 
+// Calls f with the fill rule as a compile-time constant, so the per-cell coverage function is chosen once per fill.
+template <class F>
+void with_rule(FillRule rule, F&& f) {
+  switch (rule) {
+    case FillRule::EvenOdd: return f(std::integral_constant<FillRule, FillRule::EvenOdd>{});
+    case FillRule::Positive: return f(std::integral_constant<FillRule, FillRule::Positive>{});
+    case FillRule::Negative: return f(std::integral_constant<FillRule, FillRule::Negative>{});
+    case FillRule::AbsGeq2: return f(std::integral_constant<FillRule, FillRule::AbsGeq2>{});
+    case FillRule::NonZero:
+    case FillRule::NonExterior: return f(std::integral_constant<FillRule, FillRule::NonZero>{});
+  }
+}
+
 // Small paths: every edge walks its own rows into a dense block of cells (the path's rows x columns), then one
 // running sum per row. The cell arithmetic is the row sweep's; what it saves is the per-row bookkeeping (edge
 // table, active list, touched bits), which dominates glyph-sized paths. Coordinates are shifted by the block's
@@ -280,24 +283,9 @@ bool Rasterizer::sweep_dense(FillRule rule, int width, CoverageSink& sink) {
   if (row_coverage_.size() < static_cast<std::size_t>(columns)) row_coverage_.resize(static_cast<std::size_t>(columns));
   double* block = dense_block_.data();
   float* cov = row_coverage_.data();
-  switch (rule) {
-    case FillRule::EvenOdd:
-      sweep_dense_rows<FillRule::EvenOdd>(edges_, y_min_, y_max_, x_base, columns, width, block, cov, sink);
-      break;
-    case FillRule::Positive:
-      sweep_dense_rows<FillRule::Positive>(edges_, y_min_, y_max_, x_base, columns, width, block, cov, sink);
-      break;
-    case FillRule::Negative:
-      sweep_dense_rows<FillRule::Negative>(edges_, y_min_, y_max_, x_base, columns, width, block, cov, sink);
-      break;
-    case FillRule::AbsGeq2:
-      sweep_dense_rows<FillRule::AbsGeq2>(edges_, y_min_, y_max_, x_base, columns, width, block, cov, sink);
-      break;
-    case FillRule::NonZero:
-    case FillRule::NonExterior:
-      sweep_dense_rows<FillRule::NonZero>(edges_, y_min_, y_max_, x_base, columns, width, block, cov, sink);
-      break;
-  }
+  with_rule(rule, [&](auto r) {
+    sweep_dense_rows<decltype(r)::value>(edges_, y_min_, y_max_, x_base, columns, width, block, cov, sink);
+  });
   return true;
 }
 
@@ -311,24 +299,10 @@ void Rasterizer::sweep_analytic(FillRule rule, int width, CoverageSink& sink) {
   double* acc = accumulation_.data();
   std::uint64_t* bits = touched_.data();
   float* cov = row_coverage_.data();
-  switch (rule) {
-    case FillRule::EvenOdd:
-      return sweep_analytic_rows<FillRule::EvenOdd>(edges_, order_, bucket_start_, active_, y_min_, y_max_, width,
-                                                    acc, bits, cov, sink);
-    case FillRule::Positive:
-      return sweep_analytic_rows<FillRule::Positive>(edges_, order_, bucket_start_, active_, y_min_, y_max_, width,
-                                                     acc, bits, cov, sink);
-    case FillRule::Negative:
-      return sweep_analytic_rows<FillRule::Negative>(edges_, order_, bucket_start_, active_, y_min_, y_max_, width,
-                                                     acc, bits, cov, sink);
-    case FillRule::AbsGeq2:
-      return sweep_analytic_rows<FillRule::AbsGeq2>(edges_, order_, bucket_start_, active_, y_min_, y_max_, width,
-                                                    acc, bits, cov, sink);
-    case FillRule::NonZero:
-    case FillRule::NonExterior:
-      return sweep_analytic_rows<FillRule::NonZero>(edges_, order_, bucket_start_, active_, y_min_, y_max_, width,
-                                                    acc, bits, cov, sink);
-  }
+  with_rule(rule, [&](auto r) {
+    sweep_analytic_rows<decltype(r)::value>(edges_, order_, bucket_start_, active_, y_min_, y_max_, width, acc, bits,
+                                            cov, sink);
+  });
 }
 
 // Aliased: one sample per pixel at its centre (x + 0.5, y + 0.5). An edge takes part in the sample rows with
@@ -371,7 +345,7 @@ void Rasterizer::sweep_aliased(FillRule rule, int width, CoverageSink& sink) {
     bool in = false;
     for (const Crossing& c : crossings_) {
       w += edges_[c.edge].winding;
-      const bool now = inside(rule, w);
+      const bool now = winding_fills(rule, w);
       if (now == in) continue;
       const int px = static_cast<int>(std::ceil(c.x - 0.5));
       if (now) {
