@@ -18,28 +18,10 @@ namespace {
 
 constexpr double kAnalyticTol = 1e-6;
 
-// Expected grids are written as text: one row per line, cells separated by blanks, each "0", "1", ".25", "0.5"
-// or a fraction "5/6".
-std::vector<std::vector<double>> parse_expected(const std::string& text) {
-  std::vector<std::vector<double>> rows;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream cells(line);
-    std::vector<double> row;
-    std::string cell;
-    while (cells >> cell) {
-      const auto slash = cell.find('/');
-      row.push_back(slash == std::string::npos ? std::stod(cell)
-                                               : std::stod(cell.substr(0, slash)) / std::stod(cell.substr(slash + 1)));
-    }
-    if (!row.empty()) rows.push_back(row);
-  }
-  return rows;
-}
-
+// Expected grids are written as text (parse_grid in support/capture.hpp): one row per line, cells separated by
+// blanks, each "0", "1", ".25", "0.5" or a fraction "5/6".
 ::testing::AssertionResult grid_matches(const CoverageGrid& got, const std::string& expected_text, double tol) {
-  const auto expected = parse_expected(expected_text);
+  const auto expected = parse_grid(expected_text);
   if (static_cast<int>(expected.size()) != got.height()) {
     return ::testing::AssertionFailure() << "expected grid has " << expected.size() << " rows, canvas "
                                          << got.height();

@@ -78,7 +78,11 @@ std::vector<std::vector<double>> parse_grid(const std::string& text) {
     std::istringstream cells(line);
     std::vector<double> row;
     std::string cell;
-    while (cells >> cell) row.push_back(std::stod(cell));
+    while (cells >> cell) {
+      const auto slash = cell.find('/');
+      row.push_back(slash == std::string::npos ? std::stod(cell)
+                                               : std::stod(cell.substr(0, slash)) / std::stod(cell.substr(slash + 1)));
+    }
     if (!row.empty()) rows.push_back(row);
   }
   return rows;

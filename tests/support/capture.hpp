@@ -37,7 +37,7 @@ class CoverageGrid final : public CoverageSink {
 CoverageGrid rasterize(const Path& path, FillRule rule, AntiAlias aa, int width, int height, double tol = 0.01);
 
 /// Parses a grid written as text: rows separated by newlines, cells by spaces; each cell a number
-/// (e.g. "1", "0.5", ".25", "0"). Used for hand-made expected coverage.
+/// (e.g. "1", "0.5", ".25", "0") or a fraction ("5/6"). Used for hand-made expected coverage.
 std::vector<std::vector<double>> parse_grid(const std::string& text);
 
 }  // namespace vraster::test
