@@ -10,6 +10,7 @@
 
 #include "raster/supersample.hpp"
 #include "support/capture.hpp"
+#include "support/reference.hpp"
 #include "vraster/fxaa.hpp"
 #include "vraster/vraster.hpp"
 
@@ -43,17 +44,6 @@ double rms(const CoverageGrid& a, const CoverageGrid& b) {
     }
   }
   return std::sqrt(s / (a.width() * a.height()));
-}
-
-bool rule_holds(FillRule rule, int w) {
-  switch (rule) {
-    case FillRule::EvenOdd: return (w & 1) != 0;
-    case FillRule::NonZero: return w != 0;
-    case FillRule::Positive: return w > 0;
-    case FillRule::Negative: return w < 0;
-    case FillRule::AbsGeq2: return std::abs(w) >= 2;
-    default: return false;
-  }
 }
 
 // Winding number at (sx, sy) by brute force over the polygon's segments: a segment counts when sy is in its
@@ -137,7 +127,7 @@ TEST(AaSamples, PointSampledModesMatchBruteForceWinding) {
         const CoverageGrid g = rasterize(path, rule, AntiAlias::None, W, H);
         for (int y = 0; y < H; ++y) {
           for (int x = 0; x < W; ++x) {
-            const float want = rule_holds(rule, winding_at(pts, x + 0.5, y + 0.5)) ? 1.f : 0.f;
+            const float want = test::rule_inside(rule, winding_at(pts, x + 0.5, y + 0.5)) ? 1.f : 0.f;
             ASSERT_EQ(g.at(x, y), want) << "none " << to_string(rule) << " at " << x << "," << y;
           }
         }
@@ -151,9 +141,9 @@ TEST(AaSamples, PointSampledModesMatchBruteForceWinding) {
             for (int j = 0; j < p.grid; ++j) {
               const double sy = y + (j + 0.5) / p.grid;
               if (p.sparse) {
-                inside += rule_holds(rule, winding_at(pts, x + (p.permutation()[j] + 0.5) / p.grid, sy));
+                inside += test::rule_inside(rule, winding_at(pts, x + (p.permutation()[j] + 0.5) / p.grid, sy));
               } else {
-                for (int i = 0; i < p.grid; ++i) inside += rule_holds(rule, winding_at(pts, x + (i + 0.5) / p.grid, sy));
+                for (int i = 0; i < p.grid; ++i) inside += test::rule_inside(rule, winding_at(pts, x + (i + 0.5) / p.grid, sy));
               }
             }
             const float want = static_cast<float>(inside) / static_cast<float>(p.samples());

@@ -388,7 +388,7 @@ TEST(ExactRandom, AliasedEqualsPointInPolygonAtCentres) {
             continue;
           }
           ++checked;
-          ASSERT_EQ(got[y * size + x], exact::rule_holds(rule, *w) ? 1.0 : 0.0)
+          ASSERT_EQ(got[y * size + x], rule_inside(rule, *w) ? 1.0 : 0.0)
               << "seed " << seed << " rule " << rule_name(rule) << " pixel (" << x << ", " << y << ") w " << *w;
         }
       }

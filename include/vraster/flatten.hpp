@@ -22,6 +22,18 @@ struct Polylines {
   std::span<const Point> contour(std::size_t k) const {
     return std::span<const Point>(points).subspan(start(k), ends[k] - start(k));
   }
+  /// Calls f(p, q) for every segment, each contour closed implicitly (last point back to the first), as fills see
+  /// them. Contours of fewer than two points have no segment.
+  template <class F>
+  void for_each_segment(F&& f) const {
+    for (std::size_t k = 0; k < contour_count(); ++k) {
+      const auto pts = contour(k);
+      const std::size_t n = pts.size();
+      if (n < 2) continue;
+      for (std::size_t i = 0; i < n; ++i) f(pts[i], pts[i + 1 == n ? 0 : i + 1]);
+    }
+  }
+
   void clear() {
     points.clear();
     ends.clear();

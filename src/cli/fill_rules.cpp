@@ -42,15 +42,10 @@ std::vector<int> winding_map(const Polylines& lines, int width, int height) {
   for (int y = 0; y < height; ++y) {
     const double sy = y + 0.5;
     crossings.clear();
-    for (std::size_t k = 0; k < lines.contour_count(); ++k) {
-      const auto c = lines.contour(k);
-      for (std::size_t i = 0; i < c.size(); ++i) {
-        const Point p = c[i], q = c[(i + 1) % c.size()];
-        const bool down = p.y <= sy && sy < q.y, up = q.y <= sy && sy < p.y;
-        if (!down && !up) continue;
-        crossings.emplace_back(p.x + (sy - p.y) * (q.x - p.x) / (q.y - p.y), down ? 1 : -1);
-      }
-    }
+    lines.for_each_segment([&](Point p, Point q) {
+      const bool down = p.y <= sy && sy < q.y, up = q.y <= sy && sy < p.y;
+      if (down || up) crossings.emplace_back(p.x + (sy - p.y) * (q.x - p.x) / (q.y - p.y), down ? 1 : -1);
+    });
     std::sort(crossings.begin(), crossings.end());
     int w = 0;
     std::size_t ci = 0;

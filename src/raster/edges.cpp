@@ -75,21 +75,15 @@ void Rasterizer::build_edges(const Polylines& lines, int width, int height) {
     y_hi = std::max(y_hi, p.y);
   }
   const bool inside = x_lo >= 0 && y_lo >= 0 && x_hi <= width && y_hi <= height;
-  for (std::size_t k = 0; k < lines.contour_count(); ++k) {
-    const auto pts = lines.contour(k);
-    const std::size_t n = pts.size();
-    if (n < 2) continue;
-    for (std::size_t i = 0; i < n; ++i) {
-      const Point p = pts[i], q = pts[i + 1 == n ? 0 : i + 1];
-      if (!inside) {
-        add_clipped_segment(p, q, width, height);
-      } else if (q.y > p.y) {
-        edges_.push_back({p.x, p.y, q.x, q.y, (q.x - p.x) / (q.y - p.y), 1});
-      } else if (q.y < p.y) {
-        edges_.push_back({q.x, q.y, p.x, p.y, (p.x - q.x) / (p.y - q.y), -1});
-      }
+  lines.for_each_segment([&](Point p, Point q) {
+    if (!inside) {
+      add_clipped_segment(p, q, width, height);
+    } else if (q.y > p.y) {
+      edges_.push_back({p.x, p.y, q.x, q.y, (q.x - p.x) / (q.y - p.y), 1});
+    } else if (q.y < p.y) {
+      edges_.push_back({q.x, q.y, p.x, p.y, (p.x - q.x) / (p.y - q.y), -1});
     }
-  }
+  });
   if (inside) {
     y_min_ = std::max(static_cast<int>(std::floor(y_lo)), 0);
     y_max_ = std::min(static_cast<int>(std::ceil(y_hi)), height);
@@ -113,21 +107,15 @@ void Rasterizer::compute_row_range(int height) {
 void Rasterizer::build_unclipped_edges(const Polylines& lines) {
   edges_.clear();
   horizontals_.clear();
-  for (std::size_t k = 0; k < lines.contour_count(); ++k) {
-    const auto pts = lines.contour(k);
-    const std::size_t n = pts.size();
-    if (n < 2) continue;
-    for (std::size_t i = 0; i < n; ++i) {
-      const Point p = pts[i], q = pts[i + 1 == n ? 0 : i + 1];
-      if (p.y == q.y) {
-        if (p.x != q.x) horizontals_.push_back({p.x, p.y, q.x, q.y, 0.0, 0});
-      } else if (q.y > p.y) {
-        add_edge(p, q, 1);
-      } else {
-        add_edge(q, p, -1);
-      }
+  lines.for_each_segment([&](Point p, Point q) {
+    if (p.y == q.y) {
+      if (p.x != q.x) horizontals_.push_back({p.x, p.y, q.x, q.y, 0.0, 0});
+    } else if (q.y > p.y) {
+      add_edge(p, q, 1);
+    } else {
+      add_edge(q, p, -1);
     }
-  }
+  });
 }
 
 // Replaces the edges by the boundary pieces, clipped to the image.

@@ -210,7 +210,7 @@ std::vector<Trapezoid> filled_trapezoids(const std::vector<Polygon>& contours, F
       const Seg& l = sp.sloped[act[j - 1]];
       const Seg& r = sp.sloped[act[j]];
       w += l.dir();
-      const bool filled = rule == FillRule::NonExterior ? uf.find(base[k] + j) != 0 : rule_holds(rule, w);
+      const bool filled = rule == FillRule::NonExterior ? uf.find(base[k] + j) != 0 : rule_inside(rule, w);
       if (!filled) continue;
       out.push_back({y0, y1, l.x_at(y0), l.x_at(y1), r.x_at(y0), r.x_at(y1), true});
     }
@@ -220,17 +220,6 @@ std::vector<Trapezoid> filled_trapezoids(const std::vector<Polygon>& contours, F
 
 }  // namespace
 
-bool rule_holds(FillRule rule, int w) {
-  switch (rule) {
-    case FillRule::EvenOdd: return w % 2 != 0;
-    case FillRule::NonZero: return w != 0;
-    case FillRule::Positive: return w > 0;
-    case FillRule::Negative: return w < 0;
-    case FillRule::AbsGeq2: return std::abs(w) >= 2;
-    case FillRule::NonExterior: break;
-  }
-  return false;  // NonExterior is not a predicate on w
-}
 
 std::vector<double> scan_coverage(const std::vector<Polygon>& contours, FillRule rule, int width, int height) {
   std::vector<double> cov(static_cast<std::size_t>(width) * height, 0.0);
@@ -251,7 +240,7 @@ std::vector<double> scan_coverage(const std::vector<Polygon>& contours, FillRule
     int w = 0;
     for (std::size_t i = 0; i + 1 < crossings.size(); ++i) {
       w += crossings[i].second;
-      if (rule_holds(rule, w)) len += clip_len(crossings[i].first, crossings[i + 1].first, x0, x0 + 1);
+      if (rule_inside(rule, w)) len += clip_len(crossings[i].first, crossings[i + 1].first, x0, x0 + 1);
     }
     return len;
   };

@@ -42,8 +42,6 @@ inline constexpr bool kOptimizedBuild = true;
 inline constexpr bool kOptimizedBuild = false;
 #endif
 
-/// Whether the rule holds for winding number w (EvenOdd, NonZero, Positive, Negative, AbsGeq2).
-bool rule_holds(FillRule rule, int w);
 
 /// Method 1. Coverage grid (row-major, width x height) under a winding rule (not NonExterior).
 std::vector<double> scan_coverage(const std::vector<Polygon>& contours, FillRule rule, int width, int height);
