@@ -16,6 +16,8 @@
 #include <limits>
 #include <numeric>
 
+#include "raster/cells.hpp"
+
 namespace vraster::detail {
 namespace {
 
@@ -23,7 +25,7 @@ namespace {
 // x of an edge at height y, exact at its end points.
 constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
 
-inline double x_of(const Edge& e, double y) {
+[[gnu::always_inline]] inline double x_of(const Edge& e, double y) {
   if (y == e.y0) return e.x0;
   if (y == e.y1) return e.x1;
   return e.x_at(y);
@@ -61,6 +63,44 @@ class UnionFind {
 struct BoundarySweep::State {
   UnionFind faces;
   std::vector<std::uint8_t> exterior;  // NonExterior second pass: per face id, whether it is outside
+};
+
+// Where the boundary pieces go: a list of edges (NonExterior, whose boundary is clipped and filled afterwards),
+// nowhere (NonExterior's first pass), or straight into pixel rows (fill()).
+struct BoundarySweep::PieceList {
+  static constexpr bool kRows = false;
+  std::vector<Edge>* out;
+  void piece(const Edge& s, double y0, double y1, int weight) {
+    if (out) out->push_back(Edge{x_of(s, y0), y0, x_of(s, y1), y1, s.dxdy, weight});
+  }
+  void resolve(std::int64_t) {}
+};
+
+// The sweep hands over every piece of the current pixel row before it moves past the row (it cuts the boundary
+// edges at row bottoms), so one row of cells is enough.
+struct BoundarySweep::RowCells {
+  static constexpr bool kRows = true;
+  int width;
+  double* acc;
+  std::uint64_t* bits;
+  float* cov;
+  CoverageSink& sink;
+  int x_lo, x_hi;
+
+  void piece(const Edge& s, double y0, double y1, int weight) {
+    const double xa = x_of(s, y0), xb = x_of(s, y1);
+    accumulate_piece(acc, xa, xb, (y1 - y0) * weight);
+    const int c0 = static_cast<int>(std::min(xa, xb)), c1 = static_cast<int>(std::max(xa, xb)) + 1;
+    mark_cells(bits, c0, c1);
+    x_lo = std::min(x_lo, c0);
+    x_hi = std::max(x_hi, c1);
+  }
+  // The pieces bound a region of winding 0 or 1, so the running sum is that region's area in each pixel.
+  void resolve(std::int64_t row) {
+    if (x_lo <= x_hi) resolve_row<FillRule::NonZero>(static_cast<int>(row), width, x_lo, x_hi, acc, bits, cov, sink);
+    x_lo = width + 1;
+    x_hi = 0;
+  }
 };
 
 // Events are kept per pixel row: only the current row's events are in the heap, later ones wait unsorted in their
@@ -108,8 +148,10 @@ BoundarySweep::Event BoundarySweep::pop_event() {
   return e;
 }
 
-// Tests the neighbours at positions p and p + 1 for a crossing below y, and schedules it.
+// Tests the neighbours at positions p and p + 1 for a crossing below y, and schedules it (not in band mode,
+// where bands find crossings themselves).
 void BoundarySweep::check_pair(std::size_t p, double y) {
+  if (band_mode_) return;
   const std::uint32_t a = order_[p], b = order_[p + 1];
   const Edge& ea = (*edges_)[a];
   const Edge& eb = (*edges_)[b];
@@ -199,9 +241,9 @@ bool BoundarySweep::remove_turning_pair(std::uint32_t a, std::uint32_t b, double
   return true;
 }
 
-template <class Filled>
+template <class Filled, class Out>
 void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>& horizontals, bool track_faces,
-                        State& state, Filled&& filled, std::vector<Edge>* out) {
+                        State& state, Filled&& filled, Out& out) {
   edges_ = &edges;
   const std::size_t n = edges.size();
   starts_.resize(n);
@@ -238,12 +280,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
   state.faces.reset();
 
   auto emit = [&](std::uint32_t e, double y) {
-    if (out && weight_[e] != 0 && y > since_[e]) {
-      const Edge& s = edges[e];
-      const double y0 = since_[e];
-      Edge piece{x_of(s, y0), y0, x_of(s, y), y, s.dxdy, weight_[e]};
-      out->push_back(piece);
-    }
+    if (weight_[e] != 0 && y > since_[e]) out.piece(edges[e], since_[e], y, weight_[e]);
     since_[e] = y;
   };
   auto right_face = [&](std::size_t p) { return p + 1 < order_.size() ? left_face_[order_[p + 1]] : 0; };
@@ -258,16 +295,141 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     }
   };
 
-  std::vector<std::uint32_t> h_order(horizontals.size());
+  // Crossing-heavy rows go band by band instead of crossing by crossing (winding rules, row output only): between
+  // two heights where no edge starts or ends, the crossings are the inversions between the order at the top and
+  // the order at the bottom, found by an insertion sort. Each crossing then changes the winding left of its two
+  // edges only; every edge walks its own crossings in y order. No event queue, no neighbour tests: O(1) per
+  // crossing plus O(edges) per band. Rows go back to events when crossings get rare.
+  constexpr bool kBands = Out::kRows;
+  band_mode_ = false;
+  band_top_y_ = -std::numeric_limits<double>::infinity();
+  double band_from = 0;
+  std::size_t row_crossings = 0, row_batches = 0;
+  auto sweep_band = [&](double y0, double y1) -> std::size_t {
+    const std::size_t m = order_.size();
+    if (m < 2) return 0;
+    band_xb_.resize(m);
+    band_idx_.resize(m);
+    // x at the top: the previous band's x at its bottom when nothing started or ended in between.
+    if (band_top_y_ != y0 || band_xa_.size() != m) {
+      band_xa_.resize(m);
+      for (std::size_t i = 0; i < m; ++i) band_xa_[i] = x_of(edges[order_[i]], y0);
+    }
+    for (std::size_t i = 0; i < m; ++i) {
+      band_xb_[i] = x_of(edges[order_[i]], y1);
+      band_idx_[i] = static_cast<std::uint32_t>(i);
+    }
+    band_events_.clear();
+    for (std::size_t i = 1; i < m; ++i) {
+      const std::uint32_t c = band_idx_[i];
+      const double xc = band_xb_[c];
+      std::size_t j = i;
+      while (j > 0 && band_xb_[band_idx_[j - 1]] > xc) {
+        // d was left of c at y0 and is right of it at y1: they cross in between, where their gap closes.
+        const std::uint32_t d = band_idx_[j - 1];
+        const double top = band_xa_[c] - band_xa_[d], bottom = band_xb_[c] - band_xb_[d];
+        const double yc = top > 0 ? std::min(y0 + (y1 - y0) * (top / (top - bottom)), y1) : y0;
+        band_events_.push_back({yc, c, -edges[order_[d]].winding});
+        band_events_.push_back({yc, d, edges[order_[c]].winding});
+        band_idx_[j] = d;
+        --j;
+      }
+      band_idx_[j] = c;
+    }
+    const std::size_t crossings = band_events_.size() / 2;
+    band_top_y_ = y1;
+    if (crossings == 0) {
+      band_xa_.swap(band_xb_);
+      return 0;
+    }
+    // Group the events by edge (counting sort), then each edge's few events by y.
+    band_start_.assign(m + 1, 0);
+    for (const BandEvent& ev : band_events_) ++band_start_[ev.pos + 1];
+    for (std::size_t i = 0; i < m; ++i) band_start_[i + 1] += band_start_[i];
+    band_sorted_.resize(band_events_.size());
+    band_cursor_.assign(band_start_.begin(), band_start_.end() - 1);
+    for (const BandEvent& ev : band_events_) band_sorted_[band_cursor_[ev.pos]++] = ev;
+    for (std::size_t i = 0; i < m; ++i) {
+      const std::uint32_t b = band_start_[i], end = band_start_[i + 1];
+      if (b == end) continue;
+      std::sort(band_sorted_.begin() + b, band_sorted_.begin() + end,
+                [](const BandEvent& x, const BandEvent& y) { return x.y < y.y; });
+      const std::uint32_t e = order_[i];
+      int wl = left_winding_[e];
+      for (std::uint32_t k = b; k < end; ++k) {
+        wl += band_sorted_[k].delta;
+        const int w = static_cast<int>(filled(wl + edges[e].winding, 0)) - static_cast<int>(filled(wl, 0));
+        if (w != weight_[e]) {
+          emit(e, band_sorted_[k].y);
+          weight_[e] = static_cast<std::int8_t>(w);
+        }
+      }
+      // The inversions are exactly the pairs whose order changed, so this is the prefix sum of the windings left
+      // of e in the order at y1 (integers: no round-off).
+      left_winding_[e] = wl;
+    }
+    // The order at y1.
+    scratch_.resize(m);
+    for (std::size_t i = 0; i < m; ++i) {
+      const std::uint32_t e = order_[band_idx_[i]];
+      scratch_[i] = e;
+      pos_[e] = static_cast<std::int32_t>(i);
+      band_xa_[i] = band_xb_[band_idx_[i]];
+    }
+    order_.swap(scratch_);
+    return crossings;
+  };
+  // Brings the order up to height y (band mode); afterwards the order is sorted at y as the batch code expects.
+  auto catch_up = [&](double y) {
+    if (band_mode_ && y > band_from) row_crossings += sweep_band(band_from, y);
+    band_from = y;
+  };
+  auto check_all = [&](double y) {
+    for (std::size_t p = 0; p + 1 < order_.size(); ++p) check_pair(p, y);
+  };
+
+  // Row output: before the sweep passes the bottom of the current pixel row, the boundary edges hand over their
+  // pieces down to it and the row is resolved.
+  std::int64_t row = n > 0 ? static_cast<std::int64_t>(std::floor(edges[starts_[0]].y0)) : 0;
+  // Returns true when it scheduled crossings (back to events), which the caller must look at before anything at y.
+  auto finish_rows_above = [&](double y) {
+    bool scheduled = false;
+    while (static_cast<double>(row + 1) <= y) {
+      const double bottom = static_cast<double>(row + 1);
+      if constexpr (kBands) catch_up(bottom);
+      for (std::uint32_t e : order_) emit(e, bottom);
+      out.resolve(row);
+      if constexpr (kBands) {
+        // The next row's mode, from this row's count of crossings.
+        const bool crowded = row_crossings >= kMinBandCrossings && row_crossings * 4 >= order_.size();
+        if (band_mode_ && !crowded) {
+          band_mode_ = false;
+          check_all(bottom);  // events again: every pair of neighbours needs its crossing scheduled
+          scheduled = true;
+        } else if (!band_mode_ && crowded && !track_faces) {
+          band_mode_ = true;
+        }
+        band_from = bottom;
+        row_crossings = row_batches = 0;
+      }
+      ++row;
+      // Nothing active: jump to the row of the next event.
+      if (order_.empty()) row = std::max(row, static_cast<std::int64_t>(std::floor(y)));
+    }
+    return scheduled;
+  };
+
+  std::vector<std::uint32_t>& h_order = h_order_;
+  h_order.resize(horizontals.size());
   std::iota(h_order.begin(), h_order.end(), 0u);
   std::sort(h_order.begin(), h_order.end(),
             [&](std::uint32_t i, std::uint32_t j) { return horizontals[i].y0 < horizontals[j].y0; });
 
   std::size_t next_start = 0, next_h = 0;
-  std::vector<std::uint32_t> ends, new_edges;
-  std::vector<std::pair<double, double>> blocked;
-  std::vector<double> above_x;
-  std::vector<std::int32_t> above_face;
+  std::vector<std::uint32_t>&ends = ends_, &new_edges = new_edges_;
+  std::vector<std::pair<double, double>>& blocked = blocked_;
+  std::vector<double>& above_x = above_x_;
+  std::vector<std::int32_t>& above_face = above_face_;
   const double inf = std::numeric_limits<double>::infinity();
 
   for (;;) {
@@ -276,13 +438,32 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     const double ye = refill(std::min(ys, yh)) ? heap_.front().y : inf;
     const double y = std::min({ys, yh, ye});
     if (y == inf) break;
+    if constexpr (Out::kRows) {
+      if (finish_rows_above(y)) continue;  // new crossing events may come before y's
+    }
     // Crossings at y go before the vertices at y, so an edge continuing another takes an up-to-date slot.
     const bool batch = !(ye == y && heap_.front().kind == kCrossing);
+    if constexpr (kBands) {
+      if (band_mode_) {
+        if (!batch) {  // bands find the crossings themselves
+          pop_event();
+          continue;
+        }
+        catch_up(y);
+        band_top_y_ = -std::numeric_limits<double>::infinity();  // the batch below changes the order
+        if (++row_batches > kMaxBandBatches) {  // vertex-heavy row: each band costs O(edges), go back to events
+          band_mode_ = false;
+          check_all(y);
+          continue;  // the crossings just scheduled at y go first
+        }
+      }
+    }
     if (!batch) {
       // A crossing of two neighbours: swap them.
       const Event ev = pop_event();
       const std::int32_t p = pos_[ev.a];
       if (p < 0 || pos_[ev.b] != p + 1) continue;  // stale: they are no longer neighbours
+      ++row_crossings;
       const std::uint32_t a = ev.a, b = ev.b;
       const auto pa = static_cast<std::size_t>(p);
       order_[pa] = b;
@@ -453,8 +634,8 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
       // the line between them is free.
       for (std::size_t p = 0; p < order_.size(); ++p) left_face_[order_[p]] = p == 0 ? 0 : state.faces.make();
       std::sort(blocked.begin(), blocked.end());
-      std::vector<double> cuts;
-      cuts.reserve(above_x.size() + order_.size() + 2 * blocked.size());
+      std::vector<double>& cuts = cuts_;
+      cuts.clear();
       cuts.insert(cuts.end(), above_x.begin(), above_x.end());
       for (std::uint32_t e : order_) cuts.push_back(x_of(edges[e], y));
       for (const auto& [lo, hi] : blocked) {
@@ -487,25 +668,41 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     }
     for (std::uint32_t e : order_) dirty_[e] = 0;
   }
+  if constexpr (Out::kRows) {
+    if (n > 0) out.resolve(row);  // every edge has ended: the last row holds all its pieces
+  }
 }
 
 void BoundarySweep::extract(const std::vector<Edge>& edges, const std::vector<Edge>& horizontals, FillRule rule,
                             std::vector<Edge>& out) {
   State state;
+  PieceList pieces{&out};
   if (rule != FillRule::NonExterior) {
     static const std::vector<Edge> kNone;
-    run(edges, kNone, false, state, [rule](int w, std::int32_t) { return winding_fills(rule, w); }, &out);
+    run(edges, kNone, false, state, [rule](int w, std::int32_t) { return winding_fills(rule, w); }, pieces);
     return;
   }
   // First pass: which faces reach the outside. Second pass: the same sweep (same face ids), writing the pieces
   // between exterior and non-exterior faces.
-  run(edges, horizontals, true, state, [](int, std::int32_t) { return false; }, nullptr);
+  PieceList nowhere{nullptr};
+  run(edges, horizontals, true, state, [](int, std::int32_t) { return false; }, nowhere);
   state.exterior.resize(state.faces.size());
   for (std::size_t i = 0; i < state.exterior.size(); ++i) {
     state.exterior[i] = state.faces.find(static_cast<std::int32_t>(i)) == 0;
   }
   std::vector<std::uint8_t> exterior = std::move(state.exterior);
-  run(edges, horizontals, true, state, [&](int, std::int32_t face) { return !exterior[face]; }, &out);
+  run(edges, horizontals, true, state, [&](int, std::int32_t face) { return !exterior[face]; }, pieces);
+}
+
+void BoundarySweep::fill(const std::vector<Edge>& edges, FillRule rule, int width, CoverageSink& sink) {
+  const std::size_t cells = static_cast<std::size_t>(width) + 2;
+  if (cells_.size() < cells) cells_.assign(cells, 0.0);
+  if (touched_.size() < cells / 64 + 1) touched_.assign(cells / 64 + 1, 0);
+  if (coverage_.size() < cells) coverage_.resize(cells);
+  RowCells rows{width, cells_.data(), touched_.data(), coverage_.data(), sink, width + 1, 0};
+  State state;
+  static const std::vector<Edge> kNone;
+  run(edges, kNone, false, state, [rule](int w, std::int32_t) { return winding_fills(rule, w); }, rows);
 }
 
 }  // namespace vraster::detail

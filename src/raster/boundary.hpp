@@ -22,6 +22,11 @@ class BoundarySweep {
   void extract(const std::vector<Edge>& edges, const std::vector<Edge>& horizontals, FillRule rule,
                std::vector<Edge>& out);
 
+  /// Exact coverage of `edges` (clipped to the image, as Rasterizer::build_edges leaves them) under a winding
+  /// rule, straight to `sink`: the boundary pieces are accumulated into one pixel row at a time as the sweep
+  /// passes it (no list of pieces, no second sweep). Rows come out in increasing y.
+  void fill(const std::vector<Edge>& edges, FillRule rule, int width, CoverageSink& sink);
+
  private:
   struct Event {
     double y;
@@ -34,9 +39,11 @@ class BoundarySweep {
   };
 
   struct State;
-  template <class Filled>
+  struct PieceList;
+  struct RowCells;
+  template <class Filled, class Out>
   void run(const std::vector<Edge>& edges, const std::vector<Edge>& horizontals, bool track_faces, State& state,
-           Filled&& filled, std::vector<Edge>* out);
+           Filled&& filled, Out& out);
 
   template <class UpdateWeight>
   bool insert_turning_pair(std::uint32_t a, std::uint32_t b, double y, bool track_faces, State& state,
@@ -64,7 +71,30 @@ class BoundarySweep {
   std::vector<std::uint8_t> dirty_;    // edges whose neighbours changed in the current batch
   std::vector<std::uint32_t> scratch_;
   std::vector<std::uint8_t> consumed_;
-  std::vector<std::uint32_t> replaced_;  // edges that continued an ending one in the current batch  // ends of the current batch already continued by a starting edge
+  std::vector<std::uint32_t> replaced_;  // edges that continued an ending one in the current batch
+  // Scratch of one run, kept for its capacity.
+  std::vector<std::uint32_t> ends_, new_edges_, h_order_;
+  std::vector<std::pair<double, double>> blocked_;
+  std::vector<double> above_x_, cuts_;
+  std::vector<std::int32_t> above_face_;
+  // Band mode (see run()): rows with at least this many crossings, a quarter of the active edges, go band by band,
+  // unless a row has more than kMaxBandBatches heights where edges start or end.
+  static constexpr std::size_t kMinBandCrossings = 32;
+  static constexpr std::size_t kMaxBandBatches = 8;
+  struct BandEvent {
+    double y;
+    std::uint32_t pos;  // the edge's position in the order at the band's top
+    std::int32_t delta; // change of the winding number left of it
+  };
+  bool band_mode_ = false;
+  double band_top_y_ = 0;              // band_xa_ holds the order's x at this height (-inf: nothing cached)
+  std::vector<double> band_xa_, band_xb_;
+  std::vector<std::uint32_t> band_idx_, band_start_, band_cursor_;
+  std::vector<BandEvent> band_events_, band_sorted_;
+  // fill(): one row of accumulation cells, their touched bits, the row's coverage.
+  std::vector<double> cells_;
+  std::vector<std::uint64_t> touched_;
+  std::vector<float> coverage_;
 };
 
 }  // namespace vraster::detail
