@@ -15,6 +15,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <type_traits>
 
 #include "raster/cells.hpp"
 
@@ -309,32 +310,36 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     const std::size_t m = order_.size();
     if (m < 2) return 0;
     band_xb_.resize(m);
-    band_idx_.resize(m);
+    band_keys_.resize(m);
+    band_w_.resize(m);
     // x at the top: the previous band's x at its bottom when nothing started or ended in between.
     if (band_top_y_ != y0 || band_xa_.size() != m) {
       band_xa_.resize(m);
       for (std::size_t i = 0; i < m; ++i) band_xa_[i] = x_of(edges[order_[i]], y0);
     }
     for (std::size_t i = 0; i < m; ++i) {
-      band_xb_[i] = x_of(edges[order_[i]], y1);
-      band_idx_[i] = static_cast<std::uint32_t>(i);
+      const Edge& e = edges[order_[i]];
+      band_xb_[i] = x_of(e, y1);
+      band_keys_[i] = {band_xb_[i], static_cast<std::uint32_t>(i)};
+      band_w_[i] = static_cast<std::int8_t>(e.winding);
     }
     band_events_.clear();
+    const double h = y1 - y0;
     for (std::size_t i = 1; i < m; ++i) {
-      const std::uint32_t c = band_idx_[i];
-      const double xc = band_xb_[c];
+      const BandKey key = band_keys_[i];
+      const std::uint32_t c = key.pos;
       std::size_t j = i;
-      while (j > 0 && band_xb_[band_idx_[j - 1]] > xc) {
+      while (j > 0 && band_keys_[j - 1].x > key.x) {
         // d was left of c at y0 and is right of it at y1: they cross in between, where their gap closes.
-        const std::uint32_t d = band_idx_[j - 1];
-        const double top = band_xa_[c] - band_xa_[d], bottom = band_xb_[c] - band_xb_[d];
-        const double yc = top > 0 ? std::min(y0 + (y1 - y0) * (top / (top - bottom)), y1) : y0;
-        band_events_.push_back({yc, c, -edges[order_[d]].winding});
-        band_events_.push_back({yc, d, edges[order_[c]].winding});
-        band_idx_[j] = d;
+        const std::uint32_t d = band_keys_[j - 1].pos;
+        const double top = band_xa_[c] - band_xa_[d], bottom = key.x - band_xb_[d];
+        const double yc = top > 0 ? std::min(y0 + h * (top / (top - bottom)), y1) : y0;
+        band_events_.push_back({yc, c, -band_w_[d]});
+        band_events_.push_back({yc, d, band_w_[c]});
+        band_keys_[j] = band_keys_[j - 1];
         --j;
       }
-      band_idx_[j] = c;
+      band_keys_[j] = key;
     }
     const std::size_t crossings = band_events_.size() / 2;
     band_top_y_ = y1;
@@ -352,8 +357,12 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     for (std::size_t i = 0; i < m; ++i) {
       const std::uint32_t b = band_start_[i], end = band_start_[i + 1];
       if (b == end) continue;
-      std::sort(band_sorted_.begin() + b, band_sorted_.begin() + end,
-                [](const BandEvent& x, const BandEvent& y) { return x.y < y.y; });
+      for (std::uint32_t k = b + 1; k < end; ++k) {  // insertion sort: an edge has one or two crossings per band
+        const BandEvent ev = band_sorted_[k];
+        std::uint32_t j = k;
+        for (; j > b && band_sorted_[j - 1].y > ev.y; --j) band_sorted_[j] = band_sorted_[j - 1];
+        band_sorted_[j] = ev;
+      }
       const std::uint32_t e = order_[i];
       int wl = left_winding_[e];
       for (std::uint32_t k = b; k < end; ++k) {
@@ -371,10 +380,10 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     // The order at y1.
     scratch_.resize(m);
     for (std::size_t i = 0; i < m; ++i) {
-      const std::uint32_t e = order_[band_idx_[i]];
+      const std::uint32_t e = order_[band_keys_[i].pos];
       scratch_[i] = e;
       pos_[e] = static_cast<std::int32_t>(i);
-      band_xa_[i] = band_xb_[band_idx_[i]];
+      band_xa_[i] = band_keys_[i].x;
     }
     order_.swap(scratch_);
     return crossings;
@@ -702,7 +711,18 @@ void BoundarySweep::fill(const std::vector<Edge>& edges, FillRule rule, int widt
   RowCells rows{width, cells_.data(), touched_.data(), coverage_.data(), sink, width + 1, 0};
   State state;
   static const std::vector<Edge> kNone;
-  run(edges, kNone, false, state, [rule](int w, std::int32_t) { return winding_fills(rule, w); }, rows);
+  // The rule as a compile-time constant: the sweep asks it twice per crossing.
+  auto with = [&](auto r) {
+    run(edges, kNone, false, state, [](int w, std::int32_t) { return winding_fills(decltype(r)::value, w); }, rows);
+  };
+  switch (rule) {
+    case FillRule::EvenOdd: return with(std::integral_constant<FillRule, FillRule::EvenOdd>{});
+    case FillRule::Positive: return with(std::integral_constant<FillRule, FillRule::Positive>{});
+    case FillRule::Negative: return with(std::integral_constant<FillRule, FillRule::Negative>{});
+    case FillRule::AbsGeq2: return with(std::integral_constant<FillRule, FillRule::AbsGeq2>{});
+    case FillRule::NonZero:
+    case FillRule::NonExterior: return with(std::integral_constant<FillRule, FillRule::NonZero>{});
+  }
 }
 
 }  // namespace vraster::detail

@@ -88,8 +88,14 @@ class BoundarySweep {
   };
   bool band_mode_ = false;
   double band_top_y_ = 0;              // band_xa_ holds the order's x at this height (-inf: nothing cached)
-  std::vector<double> band_xa_, band_xb_;
-  std::vector<std::uint32_t> band_idx_, band_start_, band_cursor_;
+  struct BandKey {
+    double x;           // x at the band's bottom
+    std::uint32_t pos;  // position in the order at its top
+  };
+  std::vector<double> band_xa_, band_xb_;   // x of the order's edges at the band's top and bottom
+  std::vector<BandKey> band_keys_;
+  std::vector<std::int8_t> band_w_;         // their windings
+  std::vector<std::uint32_t> band_start_, band_cursor_;
   std::vector<BandEvent> band_events_, band_sorted_;
   // fill(): one row of accumulation cells, their touched bits, the row's coverage.
   std::vector<double> cells_;
