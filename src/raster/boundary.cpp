@@ -267,7 +267,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     y_lo = std::min(y_lo, e.y0);
     y_hi = std::max(y_hi, e.y1);
   }
-  bucketed_ = n > 0 && y_hi - y_lo < (1 << 20);
+  bucketed_ = n >= kMinBucketedEdges && y_hi - y_lo < (1 << 20);
   if (bucketed_) {
     row_base_ = static_cast<std::int64_t>(std::floor(y_lo));
     const auto rows = static_cast<std::size_t>(static_cast<std::int64_t>(std::floor(y_hi)) - row_base_ + 2);

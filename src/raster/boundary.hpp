@@ -34,6 +34,8 @@ class BoundarySweep {
     std::uint32_t a, b;
   };
   static constexpr std::uint32_t kCrossing = 0, kEnd = 1;
+  // Paths with fewer edges keep all their events in one heap: setting up and walking row buckets costs more.
+  static constexpr std::size_t kMinBucketedEdges = 256;
   struct Later {
     bool operator()(const Event& p, const Event& q) const { return p.y > q.y || (p.y == q.y && p.kind > q.kind); }
   };
