@@ -8,11 +8,13 @@
 //    rounding of the sink); analytic == exact for simple polygons; aliased == point-in-polygon at pixel centres.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <numbers>
 #include <random>
 
+#include "raster/convex.hpp"
 #include "support/capture.hpp"
 #include "support/exact_reference.hpp"
 #include "support/reference.hpp"
@@ -396,6 +398,54 @@ TEST(ExactRandom, AliasedEqualsPointInPolygonAtCentres) {
   }
   EXPECT_GT(checked, 100000);
   EXPECT_LT(skipped, checked / 1000);
+}
+
+
+// ---------------------------------------------------------------------------------------------------------------
+// Convex contours skip the boundary sweep (analytic coverage is exact for them): the test must know them exactly.
+
+TEST(ConvexShortcut, RecognisesConvexContoursOnly) {
+  using vraster::detail::is_single_convex_contour;
+  auto lines = [](const std::vector<Polygon>& contours) { return exact::polylines_of(contours); };
+  EXPECT_TRUE(is_single_convex_contour(lines({ccw_box(1, 1, 5, 4)})));
+  EXPECT_TRUE(is_single_convex_contour(lines({{{1, 1}, {5, 1}, {5, 4}, {1, 4}}})));            // other orientation
+  EXPECT_TRUE(is_single_convex_contour(lines({{{0, 0}, {3, 1}, {1, 2}}})));                     // triangle
+  EXPECT_TRUE(is_single_convex_contour(lines({{{0, 0}, {2, 0}, {4, 0}, {4, 2}, {4, 2}, {0, 2}}})));  // collinear, repeated
+  Polygon circle;
+  for (int i = 0; i < 64; ++i) circle.push_back({8 + 5 * std::cos(i * 0.0981747704), 8 + 5 * std::sin(i * 0.0981747704)});
+  EXPECT_TRUE(is_single_convex_contour(lines({circle})));
+
+  EXPECT_FALSE(is_single_convex_contour(lines({ccw_box(1, 1, 5, 4), ccw_box(6, 1, 8, 4)})));   // two contours
+  EXPECT_FALSE(is_single_convex_contour(lines({{{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}}})));  // L: concave
+  Polygon star;  // pentagram: every turn the same way, but it goes round twice
+  for (int i = 0; i < 5; ++i) star.push_back({5 + 4 * std::cos(i * 4 * 3.14159265358979 / 5), 5 + 4 * std::sin(i * 4 * 3.14159265358979 / 5)});
+  EXPECT_FALSE(is_single_convex_contour(lines({star})));
+  EXPECT_FALSE(is_single_convex_contour(lines({{{1, 1}, {1, 5}, {5, 5}, {5, 1}, {1, 1}, {1, 5}, {5, 5}, {5, 1}}})));  // twice
+  EXPECT_FALSE(is_single_convex_contour(lines({{{1, 1}, {1, 5}, {5, 5}, {5, 3}, {2, 3}, {5, 3}, {5, 1}}})));  // spike
+  EXPECT_FALSE(is_single_convex_contour(lines({{{0, 0}, {2, 2}, {4, 4}}})));  // degenerate: no area
+  EXPECT_FALSE(is_single_convex_contour(lines({{{0, 0}, {4, 4}, {4, 0}, {0, 4}}})));  // bow tie
+}
+
+TEST(ConvexShortcut, RandomConvexPolygonsMatchReferenceForAllRules) {
+  // Points on an ellipse at sorted random angles, either orientation, partly outside the image.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int t = 0; t < 24; ++t) {
+    const int n = 3 + static_cast<int>(rng() % 30);
+    std::vector<double> angles(static_cast<std::size_t>(n));
+    for (double& a : angles) a = u(rng) * 6.283185307179586;
+    std::sort(angles.begin(), angles.end());
+    if (t % 2) std::reverse(angles.begin(), angles.end());
+    const double cx = -2 + 24 * u(rng), cy = -2 + 24 * u(rng), rx = 1 + 10 * u(rng), ry = 1 + 10 * u(rng);
+    Polygon poly;
+    for (double a : angles) poly.push_back({cx + rx * std::cos(a), cy + ry * std::sin(a)});
+    ASSERT_TRUE(vraster::detail::is_single_convex_contour(exact::polylines_of({poly})));
+    for (FillRule rule : kWindingRules) {
+      const auto want = exact::scan_coverage({poly}, rule, 20, 20);
+      const auto got = engine_coverage({poly}, rule, AntiAlias::Exact, 20, 20);
+      EXPECT_TRUE(grids_near(got, want, 20, 1e-9)) << "case " << t << " rule " << rule_name(rule);
+    }
+  }
 }
 
 }  // namespace

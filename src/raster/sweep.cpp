@@ -12,6 +12,7 @@
 
 #include "raster/boundary.hpp"
 #include "raster/cells.hpp"
+#include "raster/convex.hpp"
 #include "raster/supersample.hpp"
 #include "vraster/raster.hpp"
 
@@ -251,9 +252,9 @@ void Rasterizer::fill(const Polylines& lines, FillRule rule, AntiAlias aa, int w
     rule = FillRule::NonZero;
   } else {
     build_edges(lines, width, height);
-    if (aa == AntiAlias::Exact) {
+    if (aa == AntiAlias::Exact && !detail::is_single_convex_contour(lines)) {
       // Only the boundary of the filled region, accumulated row by row as the sweep finds it: its pieces never
-      // cross, so the accumulation is exact.
+      // cross, so the accumulation is exact. (A convex contour needs none of that: analytic is exact for it.)
       if (!edges_.empty()) boundary_->fill(edges_, rule, width, sink);
       return;
     }
