@@ -71,8 +71,8 @@ struct BoundarySweep::State {
 struct BoundarySweep::PieceList {
   static constexpr bool kRows = false;
   std::vector<Edge>* out;
-  void piece(const Edge& s, double y0, double y1, int weight) {
-    if (out) out->push_back(Edge{x_of(s, y0), y0, x_of(s, y1), y1, s.dxdy, weight});
+  void piece(const Edge& s, double y0, double x0, double y1, double x1, int weight) {
+    if (out) out->push_back(Edge{x0, y0, x1, y1, s.dxdy, weight});
   }
   void resolve(std::int64_t) {}
 };
@@ -88,8 +88,7 @@ struct BoundarySweep::RowCells {
   CoverageSink& sink;
   int x_lo, x_hi;
 
-  void piece(const Edge& s, double y0, double y1, int weight) {
-    const double xa = x_of(s, y0), xb = x_of(s, y1);
+  void piece(const Edge&, double y0, double xa, double y1, double xb, int weight) {
     accumulate_piece(acc, xa, xb, (y1 - y0) * weight);
     const int c0 = static_cast<int>(std::min(xa, xb)), c1 = static_cast<int>(std::max(xa, xb)) + 1;
     mark_cells(bits, c0, c1);
@@ -205,6 +204,7 @@ bool BoundarySweep::insert_turning_pair(std::uint32_t a, std::uint32_t b, double
   left_face_[b] = track_faces ? state.faces.make() : 0;
   for (std::uint32_t e : {a, b}) {
     since_[e] = y;
+    since_x_[e] = edges[e].x0;
     weight_[e] = 0;
     push_event({edges[e].y1, kEnd, e, 0});
   }
@@ -258,6 +258,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
   left_face_.assign(n, 0);
   weight_.assign(n, 0);
   since_.assign(n, 0);
+  since_x_.assign(n, 0);
   dirty_.assign(n, 0);
   order_.clear();
   heap_.clear();
@@ -281,8 +282,10 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
   state.faces.reset();
 
   auto emit = [&](std::uint32_t e, double y) {
-    if (weight_[e] != 0 && y > since_[e]) out.piece(edges[e], since_[e], y, weight_[e]);
+    const double x = x_of(edges[e], y);
+    if (weight_[e] != 0 && y > since_[e]) out.piece(edges[e], since_[e], since_x_[e], y, x, weight_[e]);
     since_[e] = y;
+    since_x_[e] = x;
   };
   auto right_face = [&](std::size_t p) { return p + 1 < order_.size() ? left_face_[order_[p + 1]] : 0; };
   auto update_weight = [&](std::size_t p, double y) {
@@ -530,6 +533,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
         left_face_[s] = left_face_[e];
         weight_[s] = weight_[e];
         since_[s] = y;
+        since_x_[s] = es.x0;
         dirty_[s] = 1;
         replaced_.push_back(s);
         push_event({es.y1, kEnd, s, 0});
@@ -625,6 +629,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
       scratch_.push_back(s);
       dirty_[s] = 1;
       since_[s] = y;
+      since_x_[s] = es.x0;
       weight_[s] = 0;
       push_event({es.y1, kEnd, s, 0});
     }

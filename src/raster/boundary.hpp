@@ -70,6 +70,7 @@ class BoundarySweep {
   std::vector<std::int32_t> left_face_;     // NonExterior: face id just left of each active edge
   std::vector<std::int8_t> weight_;    // filled(right) - filled(left) of each active edge
   std::vector<double> since_;          // y from which weight_ holds
+  std::vector<double> since_x_;        // the edge's x there
   std::vector<std::uint8_t> dirty_;    // edges whose neighbours changed in the current batch
   std::vector<std::uint32_t> scratch_;
   std::vector<std::uint8_t> consumed_;
