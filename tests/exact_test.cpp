@@ -401,6 +401,21 @@ TEST(ExactRandom, AliasedEqualsPointInPolygonAtCentres) {
 }
 
 
+
+TEST(ExactRandom, CrowdedRowsSwitchBetweenBandsAndEvents) {
+  // Many crossings per row (rows go band by band) and many vertex heights per row (rows fall back to events in the
+  // middle), in one path: both ways and the switches between them must agree with the reference.
+  std::mt19937 rng(99);
+  for (int t = 0; t < (exact::kOptimizedBuild ? 2 : 1); ++t) {
+    const std::vector<Polygon> contours{exact::random_polygon(rng, 300, -2, 22)};
+    for (FillRule rule : {FillRule::EvenOdd, FillRule::NonZero, FillRule::AbsGeq2}) {
+      const auto want = exact::scan_coverage(contours, rule, 20, 20);
+      const auto got = engine_coverage(contours, rule, AntiAlias::Exact, 20, 20);
+      EXPECT_TRUE(grids_near(got, want, 20, 1e-9)) << "case " << t << " rule " << rule_name(rule);
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------------------------------
 // Convex contours skip the boundary sweep (analytic coverage is exact for them): the test must know them exactly.
 
