@@ -77,15 +77,19 @@ GlyphMask GlyphRasterizer::rasterize(const Font& font, std::uint32_t glyph, doub
   mask.top = top;
   mask.width = right - left;
   mask.height = bottom - top;
-  mask.coverage.assign(static_cast<std::size_t>(mask.width) * static_cast<std::size_t>(mask.height), 0);
+  mask.coverage.resize(static_cast<std::size_t>(mask.width) * static_cast<std::size_t>(mask.height));
   lines_.clear();
-  const Rect clip{0, 0, static_cast<double>(mask.width), static_cast<double>(mask.height)};
+  // No clip: the mask is the control box, so every point lies inside it (the clip only guards huge geometry).
   FlattenOptions fo;
   fo.tolerance = options.tolerance;
-  fo.clip = &clip;
   flatten(*path, Affine::translate(-left, -top) * to_device, fo, lines_);
-  MaskSink sink(mask);
-  rasterizer_.fill(lines_, options.rule, options.aa, mask.width, mask.height, sink);
+  if (options.aa == AntiAlias::Analytic) {
+    // The core's 8-bit mask path: same coverage as the sink below to within one level, without per-row calls.
+    rasterizer_.fill_mask(lines_, options.rule, mask.width, mask.height, mask.coverage.data(), mask.width);
+  } else {
+    MaskSink sink(mask);
+    rasterizer_.fill(lines_, options.rule, options.aa, mask.width, mask.height, sink);
+  }
   return mask;
 }
 
