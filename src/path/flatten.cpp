@@ -16,19 +16,31 @@ constexpr double kSplitFactor = 4.0;
 constexpr int kMaxSplitDepth = 48;
 
 // Wang's count n = ceil(sqrt(k * M / tolerance)) with M = sqrt(dot(d, d)) is the smallest n >= 1 with
-// n^4 >= dot(d, d) * factor, factor = (k / tolerance)^2. Glyph-sized curves need at most 16 segments; for those n
-// comes from 15 independent comparisons instead of two dependent square roots (the segment loop waits on n).
+// n^4 >= q = dot(d, d) * factor, factor = (k / tolerance)^2, i.e. with n^2 >= ceil(sqrt(q)) (n^2 is an integer).
+// Glyph-sized curves need at most 16 segments: for those one square root and a table replace two dependent
+// square roots and a rounding (the segment loop waits on n).
 constexpr int kSmallCount = 16;
 constexpr double kSmallLimit = 65536.0;  // 16^4
+
+// Smallest n >= 1 with n * n >= m, for m in [0, 256].
+constexpr auto kCeilSqrt = [] {
+  std::array<std::uint8_t, kSmallCount * kSmallCount + 1> r{};
+  for (int m = 0; m <= kSmallCount * kSmallCount; ++m) {
+    int n = 1;
+    while (n * n < m) ++n;
+    r[static_cast<std::size_t>(m)] = static_cast<std::uint8_t>(n);
+  }
+  return r;
+}();
 
 double wang_factor(double k, double tolerance) { return (k / tolerance) * (k / tolerance); }
 
 int segments_for(double squared_difference, double factor) {
   const double q = squared_difference * factor;
   if (q <= kSmallLimit) {
-    int n = 1;
-    for (int i = 1; i < kSmallCount; ++i) n += q > static_cast<double>(i * i) * (i * i) ? 1 : 0;
-    return n;
+    const double r = std::sqrt(q);  // <= 256
+    const int m = static_cast<int>(r);
+    return kCeilSqrt[static_cast<std::size_t>(m + (m < r ? 1 : 0))];
   }
   if (squared_difference == 0) return 1;  // a straight curve, even when factor is infinite (tiny tolerance)
   const double x = std::sqrt(std::sqrt(q));
@@ -87,18 +99,47 @@ class Flattener {
   void close() { finish_contour(true); }
   void finish() { finish_contour(false); }
 
-  void quad(Point p0, Point p1, Point p2, int depth = 0) {
+  // The curve calls are inlined into flatten()'s verb loop: as out-of-line calls, GCC packed the Point arguments
+  // through the stack and every curve paid a store-forwarding stall. The clipping branch stays out of line.
+  [[gnu::always_inline]] void quad(Point p0, Point p1, Point p2) {
+    if (options_.clip) [[unlikely]] return quad_clipped(p0, p1, p2, 0);
+    emit_quad(p0, p1, p2);
+  }
+
+  [[gnu::always_inline]] void cubic(Point p0, Point p1, Point p2, Point p3) {
+    if (options_.clip) [[unlikely]] return cubic_clipped(p0, p1, p2, p3, 0);
+    emit_cubic(p0, p1, p2, p3);
+  }
+
+ private:
+  [[gnu::noinline]] void quad_clipped(Point p0, Point p1, Point p2, int depth) {
     const Point pts[3] = {p0, p1, p2};
-    if (options_.clip) {
-      const Rect box = control_box(pts, 3);
-      if (!box.intersects(clip_)) return line(p2);
-      if (depth < kMaxSplitDepth && std::max(box.width(), box.height()) > kSplitFactor * clip_size_) {
-        const Point a = lerp(p0, p1, 0.5), b = lerp(p1, p2, 0.5), m = lerp(a, b, 0.5);
-        quad(p0, a, m, depth + 1);
-        quad(m, b, p2, depth + 1);
-        return;
-      }
+    const Rect box = control_box(pts, 3);
+    if (!box.intersects(clip_)) return line(p2);
+    if (depth < kMaxSplitDepth && std::max(box.width(), box.height()) > kSplitFactor * clip_size_) {
+      const Point a = lerp(p0, p1, 0.5), b = lerp(p1, p2, 0.5), m = lerp(a, b, 0.5);
+      quad_clipped(p0, a, m, depth + 1);
+      quad_clipped(m, b, p2, depth + 1);
+      return;
     }
+    emit_quad(p0, p1, p2);
+  }
+
+  [[gnu::noinline]] void cubic_clipped(Point p0, Point p1, Point p2, Point p3, int depth) {
+    const Point pts[4] = {p0, p1, p2, p3};
+    const Rect box = control_box(pts, 4);
+    if (!box.intersects(clip_)) return line(p3);
+    if (depth < kMaxSplitDepth && std::max(box.width(), box.height()) > kSplitFactor * clip_size_) {
+      const Point ab = lerp(p0, p1, 0.5), bc = lerp(p1, p2, 0.5), cd = lerp(p2, p3, 0.5);
+      const Point abc = lerp(ab, bc, 0.5), bcd = lerp(bc, cd, 0.5), m = lerp(abc, bcd, 0.5);
+      cubic_clipped(p0, ab, abc, m, depth + 1);
+      cubic_clipped(m, bcd, cd, p3, depth + 1);
+      return;
+    }
+    emit_cubic(p0, p1, p2, p3);
+  }
+
+  [[gnu::always_inline]] void emit_quad(Point p0, Point p1, Point p2) {
     const int n = quad_segments(p0, p1, p2, quad_factor_);
     // Power basis: B(t) = (a t + b) t + p0.
     const Point a = p0 - p1 * 2 + p2, b = (p1 - p0) * 2;
@@ -110,19 +151,7 @@ class Flattener {
     line(p2);
   }
 
-  void cubic(Point p0, Point p1, Point p2, Point p3, int depth = 0) {
-    const Point pts[4] = {p0, p1, p2, p3};
-    if (options_.clip) {
-      const Rect box = control_box(pts, 4);
-      if (!box.intersects(clip_)) return line(p3);
-      if (depth < kMaxSplitDepth && std::max(box.width(), box.height()) > kSplitFactor * clip_size_) {
-        const Point ab = lerp(p0, p1, 0.5), bc = lerp(p1, p2, 0.5), cd = lerp(p2, p3, 0.5);
-        const Point abc = lerp(ab, bc, 0.5), bcd = lerp(bc, cd, 0.5), m = lerp(abc, bcd, 0.5);
-        cubic(p0, ab, abc, m, depth + 1);
-        cubic(m, bcd, cd, p3, depth + 1);
-        return;
-      }
-    }
+  [[gnu::always_inline]] void emit_cubic(Point p0, Point p1, Point p2, Point p3) {
     const int n = cubic_segments(p0, p1, p2, p3, cubic_factor_);
     // Power basis: B(t) = ((a t + b) t + c) t + p0.
     const Point a = p3 - p0 + (p1 - p2) * 3, b = (p0 - p1 * 2 + p2) * 3, c = (p1 - p0) * 3;
@@ -134,7 +163,6 @@ class Flattener {
     line(p3);
   }
 
- private:
   void finish_contour(bool closed) {
     if (!open_) return;
     out_.ends.push_back(static_cast<std::uint32_t>(out_.points.size()));

@@ -177,6 +177,21 @@ inline __m128i resolve8(float* cells, __m128& carry) {
 }
 #endif
 
+// Copies n < 8 bytes in fixed-size pieces (a memcpy of variable length is a library call per row).
+inline void copy_short(std::uint8_t* out, const std::uint8_t* in, int n) {
+  if (n & 4) {
+    std::memcpy(out, in, 4);
+    out += 4;
+    in += 4;
+  }
+  if (n & 2) {
+    std::memcpy(out, in, 2);
+    out += 2;
+    in += 2;
+  }
+  if (n & 1) *out = *in;
+}
+
 // One row of cells (padded to a multiple of kCellBlock, at least width + 2) -> width bytes; the cells end zero.
 template <FillRule R>
 void resolve_row(float* cells, int padded, int width, std::uint8_t* out) {
@@ -187,7 +202,7 @@ void resolve_row(float* cells, int padded, int width, std::uint8_t* out) {
   if (c < width) {
     alignas(16) std::uint8_t tail[16];
     _mm_storel_epi64(reinterpret_cast<__m128i*>(tail), resolve8<R>(cells + c, carry));
-    std::memcpy(out + c, tail, static_cast<std::size_t>(width - c));
+    copy_short(out + c, tail, width - c);
     c += kCellBlock;
   }
   // The cells past the last pixel (an edge at x = width writes cell width + 1) only need clearing.
