@@ -185,10 +185,20 @@ TEST(MaskFill, IntegerTranslationMovesTheMaskWithinOneLevel) {
 }
 
 TEST(MaskFill, ReversingEveryContourSwapsPositiveAndNegativeAndKeepsTheSymmetricRules) {
-  // Reversal negates every cell exactly (float negation is exact), so the masks are equal bit for bit.
+  // Reversal negates every cell's contributions exactly, but adds them in another order, so float round-off may
+  // move a pixel that sits on a rounding boundary by one level; no more, and rarely.
   std::mt19937 rng(31);
   Rasterizer r;
   const int w = 27, h = 22;
+  long differing = 0, pixels = 0;
+  const auto compare = [&](const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, int it,
+                           FillRule rule) {
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      ASSERT_LE(std::abs(a[i] - b[i]), 1) << "iteration " << it << " rule " << to_string(rule) << " pixel " << i;
+      differing += a[i] != b[i];
+    }
+    pixels += static_cast<long>(a.size());
+  };
   for (int it = 0; it < 80; ++it) {
     const Polylines lines = flattened(random_polygon(rng, 0.0, 22.0));
     Polylines reversed = lines;
@@ -196,12 +206,12 @@ TEST(MaskFill, ReversingEveryContourSwapsPositiveAndNegativeAndKeepsTheSymmetric
       std::reverse(reversed.points.begin() + reversed.start(k), reversed.points.begin() + reversed.ends[k]);
     }
     for (FillRule rule : {FillRule::NonZero, FillRule::EvenOdd, FillRule::AbsGeq2}) {
-      EXPECT_EQ(mask_bytes(r, lines, rule, w, h), mask_bytes(r, reversed, rule, w, h))
-          << "iteration " << it << " rule " << to_string(rule);
+      compare(mask_bytes(r, lines, rule, w, h), mask_bytes(r, reversed, rule, w, h), it, rule);
     }
-    EXPECT_EQ(mask_bytes(r, lines, FillRule::Positive, w, h), mask_bytes(r, reversed, FillRule::Negative, w, h))
-        << "iteration " << it;
+    compare(mask_bytes(r, lines, FillRule::Positive, w, h), mask_bytes(r, reversed, FillRule::Negative, w, h), it,
+            FillRule::Positive);
   }
+  EXPECT_LE(differing, pixels / 1000) << differing << " of " << pixels << " pixels differ";
 }
 
 TEST(MaskFill, PointsARoundOffOutsideTheMaskAreTakenAsOnItsBorder) {

@@ -8,7 +8,9 @@
 #include <cstring>
 #include <type_traits>
 
-#if defined(__SSE2__) || defined(_M_X64)
+// SSE2 is part of x86-64; other targets (or -DVRASTER_MASK_SCALAR, which the tests use to check it) take the
+// portable scalar row pass (-DVRASTER_MASK_SCALAR forces it, to test it on x86-64).
+#if (defined(__SSE2__) || defined(_M_X64)) && !defined(VRASTER_MASK_SCALAR)
 #include <emmintrin.h>
 #define VRASTER_MASK_SSE2 1
 #endif
@@ -198,7 +200,9 @@ void resolve_row(float* cells, int padded, int width, std::uint8_t* out) {
 #if VRASTER_MASK_SSE2
   __m128 carry = _mm_setzero_ps();
   int c = 0;
-  for (; c + kCellBlock <= width; c += kCellBlock) _mm_storel_epi64(reinterpret_cast<__m128i*>(out + c), resolve8<R>(cells + c, carry));
+  for (; c + kCellBlock <= width; c += kCellBlock) {
+    _mm_storel_epi64(reinterpret_cast<__m128i*>(out + c), resolve8<R>(cells + c, carry));
+  }
   if (c < width) {
     alignas(16) std::uint8_t tail[16];
     _mm_storel_epi64(reinterpret_cast<__m128i*>(tail), resolve8<R>(cells + c, carry));
@@ -219,7 +223,9 @@ void resolve_row(float* cells, int padded, int width, std::uint8_t* out) {
 
 template <FillRule R>
 void resolve_rows(float* block, int padded, int rows, int width, std::uint8_t* out, std::ptrdiff_t stride) {
-  for (int r = 0; r < rows; ++r) resolve_row<R>(block + static_cast<std::ptrdiff_t>(r) * padded, padded, width, out + r * stride);
+  for (int r = 0; r < rows; ++r) {
+    resolve_row<R>(block + static_cast<std::ptrdiff_t>(r) * padded, padded, width, out + r * stride);
+  }
 }
 
 // The general sweep's coverage into bytes (paths reaching outside the mask, NonExterior, huge masks).
@@ -265,10 +271,11 @@ void Rasterizer::fill_mask(const Polylines& lines, FillRule rule, int width, int
   const double w = width, h = height;
   const bool inside = x_lo >= -kBorderSlack && y_lo >= -kBorderSlack && x_hi <= w + kBorderSlack &&
                       y_hi <= h + kBorderSlack;  // false for NaN too
-  const int padded = (width + 2 + kCellBlock - 1) / kCellBlock * kCellBlock;
+  // Cells per row: every cell a segment can write (x = width writes cell width + 1), padded to whole blocks.
+  const std::int64_t padded_cells = (std::int64_t{width} + 2 + kCellBlock - 1) / kCellBlock * kCellBlock;
   const int row_lo = inside ? static_cast<int>(std::max(y_lo, 0.0)) : 0;
   const int row_hi = inside ? static_cast<int>(std::ceil(std::min(y_hi, h))) : 0;
-  const std::int64_t cells = static_cast<std::int64_t>(padded) * (row_hi - row_lo);
+  const std::int64_t cells = padded_cells * (row_hi - row_lo);
   if (!inside || rule == FillRule::NonExterior || cells > kMaskBlockLimit) {
     clear_rows(mask, stride, width, 0, height);
     ByteMaskSink sink(mask, stride);
@@ -280,6 +287,7 @@ void Rasterizer::fill_mask(const Polylines& lines, FillRule rule, int width, int
   if (row_hi <= row_lo) return;
   if (mask_cells_.size() < static_cast<std::size_t>(cells)) mask_cells_.assign(static_cast<std::size_t>(cells), 0.0f);
   float* block = mask_cells_.data();
+  const int padded = static_cast<int>(padded_cells);  // <= kMaskBlockLimit
   const bool on_border = x_lo < 0 || y_lo < 0 || x_hi > w || y_hi > h;
   lines.for_each_segment([&](Point p, Point q) {
     if (on_border) [[unlikely]] {
