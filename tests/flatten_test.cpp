@@ -263,6 +263,23 @@ TEST(Flatten, SegmentCountsFollowWangsFormula) {
   EXPECT_EQ(wang_segments_cubic({0, 0}, {1e30, 0}, {0, 0}, {1, 0}, 0.1), 1 << 20);
 }
 
+TEST(Flatten, SegmentCountsAreExactAtEveryStepAcrossTheSmallCountTable) {
+  // Quad (0,0) (0,0) (M,0) at tolerance 0.25: k * M / tolerance = M, so n = ceil(sqrt(M)). At M = n^2 the count is
+  // exactly n, a hair above it n + 1, a hair below it n; on both sides of the switch from the table (n <= 16) to
+  // square roots.
+  for (int n = 1; n <= 24; ++n) {
+    const double m = static_cast<double>(n) * n;
+    EXPECT_EQ(wang_segments_quad({0, 0}, {0, 0}, {m, 0}, 0.25), n) << n;
+    EXPECT_EQ(wang_segments_quad({0, 0}, {0, 0}, {m * (1 + 1e-9), 0}, 0.25), n + 1) << n;
+    if (n > 1) {
+      EXPECT_EQ(wang_segments_quad({0, 0}, {0, 0}, {m * (1 - 1e-9), 0}, 0.25), n) << n;
+    }
+  }
+  // A straight curve needs one segment even at a tolerance so small that (k / tolerance)^2 overflows.
+  EXPECT_EQ(wang_segments_quad({0, 0}, {1, 1}, {2, 2}, 1e-300), 1);
+  EXPECT_EQ(wang_segments_cubic({0, 0}, {1, 1}, {2, 2}, {3, 3}, 1e-300), 1);
+}
+
 TEST(Flatten, HugeCurveWithAClipStaysSmallAndAccurateInsideTheClip) {
   const Rect clip{0, 0, 100, 100};
   for (double s : {1e6, 1e9, 1e12}) {

@@ -1,6 +1,7 @@
 // vraster: the scanline rasterizer (edges -> active edge list -> coverage spans).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string_view>
@@ -108,6 +109,17 @@ class Rasterizer {
   /// unclipped edges first (cost grows with all the geometry), then clipped.
   void fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
 
+  /// Analytic coverage of `lines` under `rule` straight into an 8-bit mask of width x height pixels: every byte
+  /// mask[y * stride + x] is written with round(255 * coverage), rounded as the 8-bit compositor rounds. The same
+  /// coverage as fill(lines, rule, AntiAlias::Analytic, ...) to within one level (cells are summed in float, not
+  /// double). Fast for paths inside the mask (glyphs): every segment walks its rows into a block of float cells,
+  /// then one vectorized pass per row sums, converts and stores. Paths reaching outside the mask, NonExterior, and
+  /// masks above kMaskBlockLimit cells take the general sweep (same results, its speed).
+  /// Throws vraster::Error when `mask` is null or `stride` < `width` (for a non-empty mask).
+  void fill_mask(const Polylines& lines, FillRule rule, int width, int height, std::uint8_t* mask,
+                 std::ptrdiff_t stride);
+  static constexpr std::int64_t kMaskBlockLimit = std::int64_t{1} << 20;
+
   /// The clipped edges of the last fill() (for tests and tools).
   const std::vector<Edge>& edges() const { return edges_; }
 
@@ -147,6 +159,7 @@ class Rasterizer {
   std::vector<std::uint64_t> touched_;       // analytic sweep: one bit per cell written in the current row
   std::vector<float> row_coverage_;          // coverage handed to the sink
   std::vector<double> dense_block_;          // small paths: rows x columns of cells, zero between fills
+  std::vector<float> mask_cells_;            // fill_mask: rows x stride float cells, zero between fills
   std::int64_t dense_limit_ = kDefaultDenseLimit;
   std::unique_ptr<detail::BoundarySweep> boundary_;
 };

@@ -184,14 +184,15 @@ double Font::advance(std::uint32_t glyph, double size) const {
   return hb_font_get_glyph_h_advance(impl_->hb, glyph) * (size / units_per_em());
 }
 
-const Path& Font::outline_units(std::uint32_t glyph) const {
+const GlyphOutline& Font::glyph_outline(std::uint32_t glyph) const {
   auto it = impl_->outlines.find(glyph);
   if (it != impl_->outlines.end()) return it->second;
-  Path path;
+  GlyphOutline outline;
   if (impl_->load(glyph, FT_LOAD_NO_SCALE | FT_LOAD_NO_HINTING | FT_LOAD_NO_BITMAP)) {
-    decompose_outline(impl_->face->glyph->outline, 1.0, 1.0, path);
+    decompose_outline(impl_->face->glyph->outline, 1.0, 1.0, outline.path);
   }
-  return impl_->outlines.emplace(glyph, std::move(path)).first->second;
+  outline.control_box = outline.path.control_bounds();
+  return impl_->outlines.emplace(glyph, std::move(outline)).first->second;
 }
 
 Path Font::outline(std::uint32_t glyph, double size, Hinting hinting) const {

@@ -24,7 +24,7 @@ struct Font::Impl {
   FT_Face face = nullptr;
   hb_font_t* hb = nullptr;               // scale = units per em: positions come out in font units
   double sized_at = -1;                  // the char size FT_Set_Char_Size last set (hinted loads)
-  std::unordered_map<std::uint32_t, Path> outlines;        // unhinted, font units, y down
+  std::unordered_map<std::uint32_t, GlyphOutline> outlines;  // unhinted, font units, y down, with control boxes
   mutable std::unordered_map<char32_t, std::uint32_t> cmap; // code point -> glyph
 
   ~Impl();

@@ -2,7 +2,8 @@
 //
 //   1. per glyph:  outline (font units, cached per glyph in the Font) -> device transform
 //   2a. axis-aligned transform, size <= kMaxCachedGlyphSize, caching on:
-//        pen x rounded to 1/phases px, y to 1 px -> cache key -> mask (rasterized on a miss) -> blit
+//        pen x rounded to 1/phases px, y to 1 px -> cache key -> mask (on a miss: flatten -> Rasterizer::fill_mask)
+//        -> blit
 //   2b. otherwise: Renderer::fill of the outline with the full transform (rotation, skew, mirror, huge sizes)
 #include <algorithm>
 #include <bit>
@@ -51,18 +52,21 @@ GlyphMask GlyphRasterizer::rasterize(const Font& font, std::uint32_t glyph, doub
   // The outline and its map to device pixels (pen at the phase).
   Path hinted;
   const Path* path = nullptr;
+  Rect cb;
   Affine to_device;
   if (options.hinting == Hinting::Light) {
     hinted = font.outline(glyph, size_y, Hinting::Light);
     path = &hinted;
+    cb = hinted.control_bounds();
     to_device = Affine::translate(phase_x, phase_y) * Affine::scale(size_x / size_y, 1.0);
   } else {
-    path = &font.outline_units(glyph);
+    const GlyphOutline& outline = font.glyph_outline(glyph);  // the box comes cached with the outline
+    path = &outline.path;
+    cb = outline.control_box;
     const double upem = font.units_per_em();
     to_device = Affine::translate(phase_x, phase_y) * Affine::scale(size_x / upem, size_y / upem);
   }
   if (path->empty()) return mask;
-  const Rect cb = path->control_bounds();
   const Point p0 = to_device.apply({cb.x0, cb.y0}), p1 = to_device.apply({cb.x1, cb.y1});
   const int left = static_cast<int>(std::floor(std::min(p0.x, p1.x)));
   const int top = static_cast<int>(std::floor(std::min(p0.y, p1.y)));
@@ -77,15 +81,19 @@ GlyphMask GlyphRasterizer::rasterize(const Font& font, std::uint32_t glyph, doub
   mask.top = top;
   mask.width = right - left;
   mask.height = bottom - top;
-  mask.coverage.assign(static_cast<std::size_t>(mask.width) * static_cast<std::size_t>(mask.height), 0);
+  mask.coverage.resize(static_cast<std::size_t>(mask.width) * static_cast<std::size_t>(mask.height));
   lines_.clear();
-  const Rect clip{0, 0, static_cast<double>(mask.width), static_cast<double>(mask.height)};
+  // No clip: the mask is the control box, so every point lies inside it (the clip only guards huge geometry).
   FlattenOptions fo;
   fo.tolerance = options.tolerance;
-  fo.clip = &clip;
   flatten(*path, Affine::translate(-left, -top) * to_device, fo, lines_);
-  MaskSink sink(mask);
-  rasterizer_.fill(lines_, options.rule, options.aa, mask.width, mask.height, sink);
+  if (options.aa == AntiAlias::Analytic) {
+    // The core's 8-bit mask path: same coverage as the sink below to within one level, without per-row calls.
+    rasterizer_.fill_mask(lines_, options.rule, mask.width, mask.height, mask.coverage.data(), mask.width);
+  } else {
+    MaskSink sink(mask);
+    rasterizer_.fill(lines_, options.rule, options.aa, mask.width, mask.height, sink);
+  }
   return mask;
 }
 
@@ -109,7 +117,8 @@ void TextRenderer::blit(Image& image, const GlyphMask& mask, int x, int y, Solid
 void TextRenderer::draw_one(Image& image, const Font& font, std::uint32_t glyph, double size, Point position,
                             const Affine& transform, const GlyphRenderOptions& options,
                             SolidCompositor<std::uint8_t>& out, Color color) {
-  const Path& units = font.outline_units(glyph);
+  const GlyphOutline& outline = font.glyph_outline(glyph);
+  const Path& units = outline.path;
   if (units.empty()) return;  // spaces, bitmap-only glyphs
   const bool aligned = axis_aligned(transform);
   const double size_x = size * transform.a, size_y = size * transform.d;
@@ -125,7 +134,7 @@ void TextRenderer::draw_one(Image& image, const Font& font, std::uint32_t glyph,
   if (cacheable) {
     // A (broken or decorative) glyph reaching far outside its em box is drawn from its outline, clipped to the image,
     // rather than as a giant mask.
-    const Rect cb = units.control_bounds();
+    const Rect cb = outline.control_box;
     const double upem = font.units_per_em();
     cacheable = cb.width() * size_x / upem <= kMaxCachedGlyphExtent && cb.height() * size_y / upem <= kMaxCachedGlyphExtent;
   }

@@ -181,7 +181,18 @@ TEST(Font, UnhintedOutlineBoxEqualsFreeTypeBox) {
     EXPECT_EQ(r.x1, box.xMax);
     EXPECT_EQ(r.y0, -box.yMax);  // y flipped
     EXPECT_EQ(r.y1, -box.yMin);
+    // The box cached with the outline (renderers size masks from it) is the same box.
+    const Rect cached = font->glyph_outline(g).control_box;
+    EXPECT_EQ(cached.x0, r.x0);
+    EXPECT_EQ(cached.y0, r.y0);
+    EXPECT_EQ(cached.x1, r.x1);
+    EXPECT_EQ(cached.y1, r.y1);
+    EXPECT_EQ(&font->glyph_outline(g).path, &font->outline_units(g));
   }
+  // A glyph without an outline (space): empty path, empty box.
+  const GlyphOutline& space = font->glyph_outline(font->glyph_index(U' '));
+  EXPECT_TRUE(space.path.empty());
+  EXPECT_TRUE(space.control_box.empty());
   FT_Done_Face(face);
   FT_Done_FreeType(lib);
 }

@@ -34,6 +34,13 @@ struct FontMetrics {
   double line_height() const { return descender - ascender + line_gap; }
 };
 
+/// A glyph's unhinted outline in font units (see Font::outline_units) and the box of all its points, control
+/// points included (its Path::control_bounds(), computed once).
+struct GlyphOutline {
+  Path path;
+  Rect control_box;
+};
+
 /// One font face. Loading reads the whole file into memory (FreeType and HarfBuzz share those bytes).
 ///
 /// A Font keeps a FreeType face and caches; it is not safe to use one Font from two threads at once. Load one per
@@ -77,7 +84,9 @@ class Font {
 
   /// The unhinted outline of a glyph in font units, y pointing down (the font's y negated), origin at the pen
   /// position on the baseline. Cached per glyph. Glyphs without outlines (spaces, bitmap-only glyphs) are empty.
-  const Path& outline_units(std::uint32_t glyph) const;
+  const Path& outline_units(std::uint32_t glyph) const { return glyph_outline(glyph).path; }
+  /// outline_units() with its control box, both cached per glyph (renderers size glyph masks from the box).
+  const GlyphOutline& glyph_outline(std::uint32_t glyph) const;
   /// The outline at `size` pixels per em, y down, origin at the pen position. Hinting::None scales outline_units(); Hinting::Light loads FreeType's light-hinted outline at
   /// that size (26.6 fixed point). Throws vraster::Error for a bad size.
   Path outline(std::uint32_t glyph, double size, Hinting hinting = Hinting::None) const;

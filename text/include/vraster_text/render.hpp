@@ -39,7 +39,8 @@ struct GlyphMask {
   std::size_t bytes() const { return coverage.size() + sizeof(GlyphMask); }
 };
 
-/// Rasterizes single glyphs into masks through the core rasterizer (flatten -> Rasterizer -> CoverageSink).
+/// Rasterizes single glyphs into masks through the core rasterizer (flatten -> Rasterizer::fill_mask for analytic
+/// coverage, Rasterizer::fill with a mask sink for the other modes).
 /// Keeps its buffers between calls; one per thread.
 class GlyphRasterizer {
  public:
