@@ -15,7 +15,6 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <type_traits>
 
 #include "raster/cells.hpp"
 
@@ -717,17 +716,9 @@ void BoundarySweep::fill(const std::vector<Edge>& edges, FillRule rule, int widt
   State state;
   static const std::vector<Edge> kNone;
   // The rule as a compile-time constant: the sweep asks it twice per crossing.
-  auto with = [&](auto r) {
+  with_rule(rule, [&](auto r) {
     run(edges, kNone, false, state, [](int w, std::int32_t) { return winding_fills(decltype(r)::value, w); }, rows);
-  };
-  switch (rule) {
-    case FillRule::EvenOdd: return with(std::integral_constant<FillRule, FillRule::EvenOdd>{});
-    case FillRule::Positive: return with(std::integral_constant<FillRule, FillRule::Positive>{});
-    case FillRule::Negative: return with(std::integral_constant<FillRule, FillRule::Negative>{});
-    case FillRule::AbsGeq2: return with(std::integral_constant<FillRule, FillRule::AbsGeq2>{});
-    case FillRule::NonZero:
-    case FillRule::NonExterior: return with(std::integral_constant<FillRule, FillRule::NonZero>{});
-  }
+  });
 }
 
 }  // namespace vraster::detail

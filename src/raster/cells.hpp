@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include "vraster/raster.hpp"
 
@@ -169,5 +170,19 @@ template <FillRule R>
 #else
 #define VRASTER_CLONES
 #endif
+
+// Calls f with the fill rule as a compile-time constant, so the per-cell coverage function (and
+// any other per-rule test) is chosen once per fill.
+template <class F>
+void with_rule(FillRule rule, F&& f) {
+  switch (rule) {
+    case FillRule::EvenOdd: return f(std::integral_constant<FillRule, FillRule::EvenOdd>{});
+    case FillRule::Positive: return f(std::integral_constant<FillRule, FillRule::Positive>{});
+    case FillRule::Negative: return f(std::integral_constant<FillRule, FillRule::Negative>{});
+    case FillRule::AbsGeq2: return f(std::integral_constant<FillRule, FillRule::AbsGeq2>{});
+    case FillRule::NonZero:
+    case FillRule::NonExterior: return f(std::integral_constant<FillRule, FillRule::NonZero>{});
+  }
+}
 
 }  // namespace vraster::detail

@@ -15,6 +15,7 @@
 #define VRASTER_MASK_SSE2 1
 #endif
 
+#include "raster/cells.hpp"
 #include "vraster/error.hpp"
 #include "vraster/raster.hpp"
 
@@ -298,14 +299,9 @@ void Rasterizer::fill_mask(const Polylines& lines, FillRule rule, int width, int
   });
   std::uint8_t* out = mask + row_lo * stride;
   const int rows = row_hi - row_lo;
-  switch (rule) {
-    case FillRule::EvenOdd: return resolve_rows<FillRule::EvenOdd>(block, padded, rows, width, out, stride);
-    case FillRule::Positive: return resolve_rows<FillRule::Positive>(block, padded, rows, width, out, stride);
-    case FillRule::Negative: return resolve_rows<FillRule::Negative>(block, padded, rows, width, out, stride);
-    case FillRule::AbsGeq2: return resolve_rows<FillRule::AbsGeq2>(block, padded, rows, width, out, stride);
-    case FillRule::NonZero:
-    case FillRule::NonExterior: return resolve_rows<FillRule::NonZero>(block, padded, rows, width, out, stride);
-  }
+  detail::with_rule(rule, [&](auto r) {
+    resolve_rows<decltype(r)::value>(block, padded, rows, width, out, stride);
+  });
 }
 
 }  // namespace vraster

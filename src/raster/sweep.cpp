@@ -24,7 +24,7 @@ using detail::coverage_of;
 using detail::mark_cells;
 using detail::resolve_row;
 using detail::snapped;
-
+using detail::with_rule;
 
 // coverage_of without data-dependent branches (same values), for loops the compiler should vectorize.
 template <FillRule R>
@@ -77,19 +77,6 @@ VRASTER_CLONES void sweep_analytic_rows(const std::vector<Edge>& edges, const st
     }
     active.resize(kept);
     if (x_lo <= x_hi) resolve_row<R>(y, width, x_lo, x_hi, acc, bits, cov, sink);
-  }
-}
-
-// Calls f with the fill rule as a compile-time constant, so the per-cell coverage function is chosen once per fill.
-template <class F>
-void with_rule(FillRule rule, F&& f) {
-  switch (rule) {
-    case FillRule::EvenOdd: return f(std::integral_constant<FillRule, FillRule::EvenOdd>{});
-    case FillRule::Positive: return f(std::integral_constant<FillRule, FillRule::Positive>{});
-    case FillRule::Negative: return f(std::integral_constant<FillRule, FillRule::Negative>{});
-    case FillRule::AbsGeq2: return f(std::integral_constant<FillRule, FillRule::AbsGeq2>{});
-    case FillRule::NonZero:
-    case FillRule::NonExterior: return f(std::integral_constant<FillRule, FillRule::NonZero>{});
   }
 }
 
