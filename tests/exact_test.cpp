@@ -14,7 +14,7 @@
 #include <numbers>
 #include <random>
 
-#include "raster/convex.hpp"
+#include "raster/unit_winding.hpp"
 #include "support/capture.hpp"
 #include "support/exact_reference.hpp"
 #include "support/reference.hpp"
@@ -417,48 +417,113 @@ TEST(ExactRandom, CrowdedRowsSwitchBetweenBandsAndEvents) {
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// Convex contours skip the boundary sweep (analytic coverage is exact for them): the test must know them exactly.
+// Paths whose winding is only ever 0 and one other value skip the boundary sweep (analytic coverage is exact for
+// them): the test that decides it must never say yes to anything else.
 
-TEST(ConvexShortcut, RecognisesConvexContoursOnly) {
-  using vraster::detail::is_single_convex_contour;
-  auto lines = [](const std::vector<Polygon>& contours) { return exact::polylines_of(contours); };
-  EXPECT_TRUE(is_single_convex_contour(lines({ccw_box(1, 1, 5, 4)})));
-  EXPECT_TRUE(is_single_convex_contour(lines({{{1, 1}, {5, 1}, {5, 4}, {1, 4}}})));            // other orientation
-  EXPECT_TRUE(is_single_convex_contour(lines({{{0, 0}, {3, 1}, {1, 2}}})));                     // triangle
-  EXPECT_TRUE(is_single_convex_contour(lines({{{0, 0}, {2, 0}, {4, 0}, {4, 2}, {4, 2}, {0, 2}}})));  // collinear, repeated
-  Polygon circle;
-  for (int i = 0; i < 64; ++i) circle.push_back({8 + 5 * std::cos(i * 0.0981747704), 8 + 5 * std::sin(i * 0.0981747704)});
-  EXPECT_TRUE(is_single_convex_contour(lines({circle})));
-
-  EXPECT_FALSE(is_single_convex_contour(lines({ccw_box(1, 1, 5, 4), ccw_box(6, 1, 8, 4)})));   // two contours
-  EXPECT_FALSE(is_single_convex_contour(lines({{{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}}})));  // L: concave
-  Polygon star;  // pentagram: every turn the same way, but it goes round twice
-  for (int i = 0; i < 5; ++i) star.push_back({5 + 4 * std::cos(i * 4 * 3.14159265358979 / 5), 5 + 4 * std::sin(i * 4 * 3.14159265358979 / 5)});
-  EXPECT_FALSE(is_single_convex_contour(lines({star})));
-  EXPECT_FALSE(is_single_convex_contour(lines({{{1, 1}, {1, 5}, {5, 5}, {5, 1}, {1, 1}, {1, 5}, {5, 5}, {5, 1}}})));  // twice
-  EXPECT_FALSE(is_single_convex_contour(lines({{{1, 1}, {1, 5}, {5, 5}, {5, 3}, {2, 3}, {5, 3}, {5, 1}}})));  // spike
-  EXPECT_FALSE(is_single_convex_contour(lines({{{0, 0}, {2, 2}, {4, 4}}})));  // degenerate: no area
-  EXPECT_FALSE(is_single_convex_contour(lines({{{0, 0}, {4, 4}, {4, 0}, {0, 4}}})));  // bow tie
+// The test on the polygons' edges, unclipped, built here (top to bottom, horizontal ones left out).
+bool unit_winding(const std::vector<Polygon>& contours) {
+  std::vector<Edge> edges;
+  for (const Polygon& poly : contours) {
+    for (std::size_t i = 0; i < poly.size(); ++i) {
+      Point a = poly[i], b = poly[(i + 1) % poly.size()];
+      if (a.y == b.y) continue;
+      const int winding = b.y > a.y ? 1 : -1;
+      if (winding < 0) std::swap(a, b);
+      edges.push_back({a.x, a.y, b.x, b.y, (b.x - a.x) / (b.y - a.y), winding});
+    }
+  }
+  return detail::UnitWindingTest{}(edges);
 }
 
-TEST(ConvexShortcut, RandomConvexPolygonsMatchReferenceForAllRules) {
-  // Points on an ellipse at sorted random angles, either orientation, partly outside the image.
+TEST(UnitWinding, AcceptsSimpleShapesAndHolesDrawnTheOtherWay) {
+  EXPECT_TRUE(unit_winding({ccw_box(1, 1, 5, 4)}));
+  EXPECT_TRUE(unit_winding({{{1, 1}, {5, 1}, {5, 4}, {1, 4}}}));                     // other orientation
+  EXPECT_TRUE(unit_winding({{{0, 0}, {3, 1}, {1, 2}}}));                             // triangle
+  EXPECT_TRUE(unit_winding({{{0, 0}, {2, 0}, {4, 0}, {4, 2}, {4, 2}, {0, 2}}}));     // collinear, repeated point
+  EXPECT_TRUE(unit_winding({{{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}}}));     // L: concave but simple
+  Polygon circle;
+  for (int i = 0; i < 64; ++i) circle.push_back({8 + 5 * std::cos(i * 0.0981747704), 8 + 5 * std::sin(i * 0.0981747704)});
+  EXPECT_TRUE(unit_winding({circle}));
+  EXPECT_TRUE(unit_winding({ccw_box(1, 1, 5, 4), ccw_box(6, 1, 8, 4)}));             // two apart, same way round
+  EXPECT_TRUE(unit_winding({ccw_box(1, 1, 5, 4), ccw_box(5, 1, 8, 4)}));             // sharing a side
+  Polygon hole = ccw_box(2, 2, 4, 3);
+  std::reverse(hole.begin(), hole.end());
+  EXPECT_TRUE(unit_winding({ccw_box(1, 1, 5, 4), hole}));                            // an 'o'
+  EXPECT_TRUE(unit_winding({pentagram_outline({10, 10}, 8)}));                       // star without crossings
+  EXPECT_TRUE(unit_winding({{{1, 1}, {1, 5}, {5, 5}, {5, 3}, {2, 3}, {5, 3}, {5, 1}}}));  // horizontal spike: no area
+  EXPECT_TRUE(unit_winding({}));
+}
+
+TEST(UnitWinding, RejectsCrossingsOverlapsAndNesting) {
+  EXPECT_FALSE(unit_winding({pentagram({10, 10}, 8)}));
+  EXPECT_FALSE(unit_winding({{{0, 0}, {4, 4}, {4, 0}, {0, 4}}}));                    // bow tie
+  EXPECT_FALSE(unit_winding({{{1, 1}, {1, 5}, {5, 5}, {5, 1}, {1, 1}, {1, 5}, {5, 5}, {5, 1}}}));  // traced twice
+  EXPECT_FALSE(unit_winding({ccw_box(1, 1, 5, 4), ccw_box(2, 2, 4, 3)}));             // nested, same way: winding 2
+  EXPECT_FALSE(unit_winding({ccw_box(1, 1, 5, 4), ccw_box(3, 2, 7, 6)}));             // overlapping
+  Polygon other = ccw_box(6, 1, 8, 4);
+  std::reverse(other.begin(), other.end());
+  EXPECT_FALSE(unit_winding({ccw_box(1, 1, 5, 4), other}));                          // apart, opposite ways (+1, -1)
+  // Crossing at a tiny angle, far from any vertex.
+  EXPECT_FALSE(unit_winding({{{0, 0}, {40, 40}, {40, 40 - 1e-6}, {0, 1e-6}}}));  // a thin bow tie
+}
+
+TEST(UnitWinding, RandomSimplePolygonsAreAcceptedAndMatchReferenceForAllRules) {
+  // Star-shaped polygons (random radii at sorted random angles) are simple; either orientation, partly outside.
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0, 1);
-  for (int t = 0; t < 24; ++t) {
-    const int n = 3 + static_cast<int>(rng() % 30);
+  for (int t = 0; t < 40; ++t) {
+    const int n = 3 + static_cast<int>(rng() % 40);
     std::vector<double> angles(static_cast<std::size_t>(n));
     for (double& a : angles) a = u(rng) * 6.283185307179586;
     std::sort(angles.begin(), angles.end());
     if (t % 2) std::reverse(angles.begin(), angles.end());
-    const double cx = -2 + 24 * u(rng), cy = -2 + 24 * u(rng), rx = 1 + 10 * u(rng), ry = 1 + 10 * u(rng);
+    const double cx = -2 + 24 * u(rng), cy = -2 + 24 * u(rng), r = 1 + 10 * u(rng);
     Polygon poly;
-    for (double a : angles) poly.push_back({cx + rx * std::cos(a), cy + ry * std::sin(a)});
-    ASSERT_TRUE(vraster::detail::is_single_convex_contour(exact::polylines_of({poly})));
+    for (double a : angles) {
+      const double d = t % 4 < 2 ? r : r * (0.2 + 0.8 * u(rng));  // half convex, half star-shaped
+      poly.push_back({cx + d * std::cos(a), cy + d * std::sin(a)});
+    }
+    ASSERT_TRUE(unit_winding({poly})) << "case " << t;
     for (FillRule rule : kWindingRules) {
       const auto want = exact::scan_coverage({poly}, rule, 20, 20);
       const auto got = engine_coverage({poly}, rule, AntiAlias::Exact, 20, 20);
       EXPECT_TRUE(grids_near(got, want, 20, 1e-9)) << "case " << t << " rule " << rule_name(rule);
+    }
+  }
+}
+
+TEST(UnitWinding, WhateverItDecidesExactMatchesReferenceOnTouchingShapes) {
+  // Pairs of random boxes and triangles that touch, nest, overlap or lie apart, in both orientations: some pass the
+  // test, some do not; exact mode must match the reference either way.
+  std::mt19937 rng(11);
+  auto coord = [&] { return static_cast<double>(rng() % 9) * 2.5; };  // a coarse grid: shared vertices and sides
+  int accepted = 0;
+  for (int t = 0; t < 200; ++t) {
+    std::vector<Polygon> contours;
+    for (int k = 0; k < 2; ++k) {
+      double x0 = coord(), x1 = coord(), y0 = coord(), y1 = coord();
+      if (x0 == x1 || y0 == y1) continue;
+      Polygon p = rng() % 2 ? ccw_box(x0, y0, x1, y1) : Polygon{{x0, y0}, {x1, y1}, {x0, y1}};
+      if (rng() % 2) std::reverse(p.begin(), p.end());
+      contours.push_back(p);
+    }
+    accepted += unit_winding(contours);
+    for (FillRule rule : kWindingRules) {
+      const auto want = exact::scan_coverage(contours, rule, 20, 20);
+      const auto got = engine_coverage(contours, rule, AntiAlias::Exact, 20, 20);
+      EXPECT_TRUE(grids_near(got, want, 20, 1e-9)) << "case " << t << " rule " << rule_name(rule);
+    }
+  }
+  EXPECT_GT(accepted, 20);  // both answers are exercised
+  EXPECT_LT(accepted, 180);
+  // Spikes (a path going straight back over itself) inside and outside the shape: zero area, coincident edges.
+  for (const Polygon& spiked : {Polygon{{1, 1}, {1, 5}, {5, 5}, {5, 3}, {2, 4}, {5, 3}, {5, 1}},
+                                Polygon{{1, 1}, {1, 5}, {5, 5}, {5, 3}, {9, 4.5}, {5, 3}, {5, 1}},
+                                Polygon{{1, 1}, {1, 5}, {5, 5}, {5, 1}, {3, 1}, {3.5, 3}, {3, 1}}}) {
+    for (FillRule rule : kWindingRules) {
+      const auto want = exact::scan_coverage({spiked}, rule, 12, 12);
+      const auto got = engine_coverage({spiked}, rule, AntiAlias::Exact, 12, 12);
+      EXPECT_TRUE(grids_near(got, want, 12, 1e-9)) << "rule " << rule_name(rule);
     }
   }
 }

@@ -84,13 +84,15 @@ struct Edge {
   /// x where the edge crosses height y (clamped to the edge's x range so round-off never overshoots).
   double x_at(double y) const {
     const double x = x0 + (y - y0) * dxdy;
-    const double lo = x0 < x1 ? x0 : x1, hi = x0 < x1 ? x1 : x0;
-    return x < lo ? lo : (x > hi ? hi : x);
+    const double lo = x1 < x0 ? x1 : x0, hi = x0 < x1 ? x1 : x0;  // (written so that they compile to min and max)
+    const double above_lo = lo < x ? x : lo;
+    return hi < above_lo ? hi : above_lo;
   }
 };
 
 namespace detail {
 class BoundarySweep;
+class UnitWindingTest;
 }
 
 /// Scan converts flattened contours. Keeps its buffers between calls, so one Rasterizer per thread,
@@ -162,6 +164,7 @@ class Rasterizer {
   std::vector<float> mask_cells_;            // fill_mask: rows x stride float cells, zero between fills
   std::int64_t dense_limit_ = kDefaultDenseLimit;
   std::unique_ptr<detail::BoundarySweep> boundary_;
+  std::unique_ptr<detail::UnitWindingTest> unit_winding_;  // exact mode: whether analytic is already exact
 };
 
 }  // namespace vraster

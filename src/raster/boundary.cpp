@@ -21,15 +21,7 @@
 namespace vraster::detail {
 namespace {
 
-
-// x of an edge at height y, exact at its end points.
 constexpr std::uint32_t kRemoved = 0xFFFFFFFFu;
-
-[[gnu::always_inline]] inline double x_of(const Edge& e, double y) {
-  if (y == e.y0) return e.x0;
-  if (y == e.y1) return e.x1;
-  return e.x_at(y);
-}
 
 class UnionFind {
  public:

@@ -11,6 +11,13 @@
 
 namespace vraster::detail {
 
+/// x of an edge at height y, exact at its end points (so edges that share a vertex agree there).
+[[gnu::always_inline]] inline double x_of(const Edge& e, double y) {
+  if (y == e.y0) return e.x0;
+  if (y == e.y1) return e.x1;
+  return e.x_at(y);
+}
+
 /// Classifies the faces of the edges' arrangement as filled or not.
 ///  - For a winding rule, a face is filled when the rule holds for its winding number.
 ///  - For NonExterior, a face is filled unless it is connected to the region outside all edges.

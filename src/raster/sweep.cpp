@@ -12,8 +12,8 @@
 
 #include "raster/boundary.hpp"
 #include "raster/cells.hpp"
-#include "raster/convex.hpp"
 #include "raster/supersample.hpp"
+#include "raster/unit_winding.hpp"
 #include "vraster/raster.hpp"
 
 namespace vraster {
@@ -222,7 +222,8 @@ void Rasterizer::sweep_aliased(FillRule rule, int width, CoverageSink& sink) {
   }
 }
 
-Rasterizer::Rasterizer() : boundary_(std::make_unique<detail::BoundarySweep>()) {}
+Rasterizer::Rasterizer()
+    : boundary_(std::make_unique<detail::BoundarySweep>()), unit_winding_(std::make_unique<detail::UnitWindingTest>()) {}
 Rasterizer::~Rasterizer() = default;
 Rasterizer::Rasterizer(Rasterizer&&) noexcept = default;
 Rasterizer& Rasterizer::operator=(Rasterizer&&) noexcept = default;
@@ -239,9 +240,10 @@ void Rasterizer::fill(const Polylines& lines, FillRule rule, AntiAlias aa, int w
     rule = FillRule::NonZero;
   } else {
     build_edges(lines, width, height);
-    if (aa == AntiAlias::Exact && !detail::is_single_convex_contour(lines)) {
+    if (aa == AntiAlias::Exact && !(*unit_winding_)(edges_)) {
       // Only the boundary of the filled region, accumulated row by row as the sweep finds it: its pieces never
-      // cross, so the accumulation is exact. (A convex contour needs none of that: analytic is exact for it.)
+      // cross, so the accumulation is exact. (Where the winding is only ever 0 or one other value, analytic is
+      // already exact: the shapes most scenes are made of take that path.)
       if (!edges_.empty()) boundary_->fill(edges_, rule, width, sink);
       return;
     }
