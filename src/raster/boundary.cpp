@@ -78,17 +78,20 @@ struct BoundarySweep::RowCells {
   float* cov;
   CoverageSink& sink;
   int x_lo, x_hi;
+  bool crowded = false;  // a row where pieces touch nearly every cell: mark them all at once when resolving
 
   void piece(const Edge&, double y0, double xa, double y1, double xb, int weight) {
     accumulate_piece(acc, xa, xb, (y1 - y0) * weight);
     const int c0 = static_cast<int>(std::min(xa, xb)), c1 = static_cast<int>(std::max(xa, xb)) + 1;
-    mark_cells(bits, c0, c1);
+    if (!crowded) mark_cells(bits, c0, c1);
     x_lo = std::min(x_lo, c0);
     x_hi = std::max(x_hi, c1);
   }
   // The pieces bound a region of winding 0 or 1, so the running sum is that region's area in each pixel.
   void resolve(std::int64_t row) {
-    if (x_lo <= x_hi) resolve_row<FillRule::NonZero>(static_cast<int>(row), width, x_lo, x_hi, acc, bits, cov, sink);
+    if (x_lo > x_hi) return;
+    if (crowded) mark_cells(bits, x_lo, x_hi);
+    resolve_row<FillRule::NonZero>(static_cast<int>(row), width, x_lo, x_hi, acc, bits, cov, sink);
     x_lo = width + 1;
     x_hi = 0;
   }
@@ -188,14 +191,16 @@ bool BoundarySweep::insert_turning_pair(std::uint32_t a, std::uint32_t b, double
   const int wl = p == 0 ? 0 : left_winding_[order_[p - 1]] + edges[order_[p - 1]].winding;
   const std::int32_t gap = p < order_.size() ? left_face_[order_[p]] : 0;
   order_.insert(order_.begin() + static_cast<std::ptrdiff_t>(p), {a, b});
+  if (band_top_y_ == y && band_xa_.size() + 2 == order_.size()) {  // keep the next band's x at its top
+    band_xa_.insert(band_xa_.begin() + static_cast<std::ptrdiff_t>(p), {x, x});
+  }
   for (std::size_t q = p; q < order_.size(); ++q) pos_[order_[q]] = static_cast<std::int32_t>(q);
   left_winding_[a] = wl;
   left_winding_[b] = wl + edges[a].winding;
   left_face_[a] = gap;  // the gap the pair opens in keeps its face on both sides
   left_face_[b] = track_faces ? state.faces.make() : 0;
   for (std::uint32_t e : {a, b}) {
-    since_[e] = y;
-    since_x_[e] = edges[e].x0;
+    since_[e] = {edges[e].x0, y};
     weight_[e] = 0;
     push_event({edges[e].y1, kEnd, e, 0});
   }
@@ -227,6 +232,9 @@ bool BoundarySweep::remove_turning_pair(std::uint32_t a, std::uint32_t b, double
     state.faces.unite(left_face_[a], right);
   }
   order_.erase(order_.begin() + static_cast<std::ptrdiff_t>(p), order_.begin() + static_cast<std::ptrdiff_t>(p) + 2);
+  if (band_top_y_ == y && band_xa_.size() == order_.size() + 2) {
+    band_xa_.erase(band_xa_.begin() + static_cast<std::ptrdiff_t>(p), band_xa_.begin() + static_cast<std::ptrdiff_t>(p) + 2);
+  }
   pos_[a] = pos_[b] = -1;
   for (std::size_t q = p; q < order_.size(); ++q) pos_[order_[q]] = static_cast<std::int32_t>(q);
   if (p > 0 && p < order_.size()) check_pair(p - 1, y);
@@ -248,8 +256,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
   left_winding_.assign(n, 0);
   left_face_.assign(n, 0);
   weight_.assign(n, 0);
-  since_.assign(n, 0);
-  since_x_.assign(n, 0);
+  since_.assign(n, Point{});
   dirty_.assign(n, 0);
   order_.clear();
   heap_.clear();
@@ -272,12 +279,11 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
   }
   state.faces.reset();
 
-  auto emit = [&](std::uint32_t e, double y) {
-    const double x = x_of(edges[e], y);
-    if (weight_[e] != 0 && y > since_[e]) out.piece(edges[e], since_[e], since_x_[e], y, x, weight_[e]);
-    since_[e] = y;
-    since_x_[e] = x;
+  auto emit_at = [&](std::uint32_t e, double y, double x) {  // x: the edge's x at y
+    if (weight_[e] != 0 && y > since_[e].y) out.piece(edges[e], since_[e].y, since_[e].x, y, x, weight_[e]);
+    since_[e] = {x, y};
   };
+  auto emit = [&](std::uint32_t e, double y) { emit_at(e, y, x_of(edges[e], y)); };
   auto right_face = [&](std::size_t p) { return p + 1 < order_.size() ? left_face_[order_[p + 1]] : 0; };
   auto update_weight = [&](std::size_t p, double y) {
     const std::uint32_t e = order_[p];
@@ -327,9 +333,11 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
         // d was left of c at y0 and is right of it at y1: they cross in between, where their gap closes.
         const std::uint32_t d = band_keys_[j - 1].pos;
         const double top = band_xa_[c] - band_xa_[d], bottom = key.x - band_xb_[d];
-        const double yc = top > 0 ? std::min(y0 + h * (top / (top - bottom)), y1) : y0;
-        band_events_.push_back({yc, c, -band_w_[d]});
-        band_events_.push_back({yc, d, band_w_[c]});
+        const double t = top > 0 ? top / (top - bottom) : 0.0;  // in [0, 1): bottom < 0
+        const double yc = std::min(y0 + h * t, y1);
+        const double xc = band_xa_[c] + (key.x - band_xa_[c]) * t;  // the crossing point, on both edges
+        band_events_.push_back({yc, xc, c, -band_w_[d]});
+        band_events_.push_back({yc, xc, d, band_w_[c]});
         band_keys_[j] = band_keys_[j - 1];
         --j;
       }
@@ -358,12 +366,13 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
         band_sorted_[j] = ev;
       }
       const std::uint32_t e = order_[i];
+      const int winding = band_w_[i];
       int wl = left_winding_[e];
       for (std::uint32_t k = b; k < end; ++k) {
         wl += band_sorted_[k].delta;
-        const int w = static_cast<int>(filled(wl + edges[e].winding, 0)) - static_cast<int>(filled(wl, 0));
+        const int w = static_cast<int>(filled(wl + winding, 0)) - static_cast<int>(filled(wl, 0));
         if (w != weight_[e]) {
-          emit(e, band_sorted_[k].y);
+          emit_at(e, band_sorted_[k].y, band_sorted_[k].x);
           weight_[e] = static_cast<std::int8_t>(w);
         }
       }
@@ -400,13 +409,19 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     while (static_cast<double>(row + 1) <= y) {
       const double bottom = static_cast<double>(row + 1);
       if constexpr (kBands) catch_up(bottom);
-      for (std::uint32_t e : order_) emit(e, bottom);
+      if (band_mode_ && band_top_y_ == bottom && band_xa_.size() == order_.size()) {
+        // The band that just ended here has every edge's x at the bottom, in order.
+        for (std::size_t i = 0; i < order_.size(); ++i) emit_at(order_[i], bottom, band_xa_[i]);
+      } else {
+        for (std::uint32_t e : order_) emit(e, bottom);
+      }
       out.resolve(row);
       if constexpr (kBands) {
         // The next row's mode, from this row's count of crossings.
         const bool crowded = row_crossings >= kMinBandCrossings && row_crossings * 4 >= order_.size();
         if (band_mode_ && !crowded) {
           band_mode_ = false;
+          band_top_y_ = -std::numeric_limits<double>::infinity();
           check_all(bottom);  // events again: every pair of neighbours needs its crossing scheduled
           scheduled = true;
         } else if (!band_mode_ && crowded && !track_faces) {
@@ -414,6 +429,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
         }
         band_from = bottom;
         row_crossings = row_batches = 0;
+        out.crowded = band_mode_;
       }
       ++row;
       // Nothing active: jump to the row of the next event.
@@ -453,9 +469,9 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
           continue;
         }
         catch_up(y);
-        band_top_y_ = -std::numeric_limits<double>::infinity();  // the batch below changes the order
         if (++row_batches > kMaxBandBatches) {  // vertex-heavy row: each band costs O(edges), go back to events
           band_mode_ = false;
+          band_top_y_ = -std::numeric_limits<double>::infinity();
           check_all(y);
           continue;  // the crossings just scheduled at y go first
         }
@@ -523,8 +539,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
         left_winding_[s] = left_winding_[e];
         left_face_[s] = left_face_[e];
         weight_[s] = weight_[e];
-        since_[s] = y;
-        since_x_[s] = es.x0;
+        since_[s] = {es.x0, y};
         dirty_[s] = 1;
         replaced_.push_back(s);
         push_event({es.y1, kEnd, s, 0});
@@ -544,7 +559,8 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
         if (p + 1 < order_.size()) check_pair(p, y);
         dirty_[s] = 0;
       }
-      continue;
+      continue;  // (in band mode the x cached for the next band stays right: a continuing edge starts where its
+                 // predecessor ended, in the same slot)
     }
 
     // Turning vertices: local minima (two edges of opposite winding start at one point) and local maxima (two
@@ -577,6 +593,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     }
 
     // General case: rebuild the order at y, O(active edges).
+    band_top_y_ = -std::numeric_limits<double>::infinity();  // no cached x for the next band
     if (track_faces) {
       above_x.clear();
       above_face.clear();
@@ -619,8 +636,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
       }
       scratch_.push_back(s);
       dirty_[s] = 1;
-      since_[s] = y;
-      since_x_[s] = es.x0;
+      since_[s] = {es.x0, y};
       weight_[s] = 0;
       push_event({es.y1, kEnd, s, 0});
     }

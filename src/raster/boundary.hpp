@@ -76,8 +76,7 @@ class BoundarySweep {
   std::vector<std::int32_t> left_winding_;  // winding number just left of each active edge
   std::vector<std::int32_t> left_face_;     // NonExterior: face id just left of each active edge
   std::vector<std::int8_t> weight_;    // filled(right) - filled(left) of each active edge
-  std::vector<double> since_;          // y from which weight_ holds
-  std::vector<double> since_x_;        // the edge's x there
+  std::vector<Point> since_;           // the point of the edge from which weight_ holds
   std::vector<std::uint8_t> dirty_;    // edges whose neighbours changed in the current batch
   std::vector<std::uint32_t> scratch_;
   std::vector<std::uint8_t> consumed_;
@@ -92,7 +91,7 @@ class BoundarySweep {
   static constexpr std::size_t kMinBandCrossings = 32;
   static constexpr std::size_t kMaxBandBatches = 8;
   struct BandEvent {
-    double y;
+    double y, x;        // the crossing point
     std::uint32_t pos;  // the edge's position in the order at the band's top
     std::int32_t delta; // change of the winding number left of it
   };
