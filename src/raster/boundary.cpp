@@ -188,20 +188,20 @@ bool BoundarySweep::insert_turning_pair(std::uint32_t a, std::uint32_t b, double
   }
   if (lo < order_.size() && x_of(edges[order_[lo]], y) == x) return false;
   const std::size_t p = lo;
-  const int wl = p == 0 ? 0 : left_winding_[order_[p - 1]] + edges[order_[p - 1]].winding;
+  const int wl = p == 0 ? 0 : state_[order_[p - 1]].left_winding + edges[order_[p - 1]].winding;
   const std::int32_t gap = p < order_.size() ? left_face_[order_[p]] : 0;
   order_.insert(order_.begin() + static_cast<std::ptrdiff_t>(p), {a, b});
   if (band_top_y_ == y && band_xa_.size() + 2 == order_.size()) {  // keep the next band's x at its top
     band_xa_.insert(band_xa_.begin() + static_cast<std::ptrdiff_t>(p), {x, x});
   }
   for (std::size_t q = p; q < order_.size(); ++q) pos_[order_[q]] = static_cast<std::int32_t>(q);
-  left_winding_[a] = wl;
-  left_winding_[b] = wl + edges[a].winding;
+  state_[a].left_winding = wl;
+  state_[b].left_winding = wl + edges[a].winding;
   left_face_[a] = gap;  // the gap the pair opens in keeps its face on both sides
   left_face_[b] = track_faces ? state.faces.make() : 0;
   for (std::uint32_t e : {a, b}) {
-    since_[e] = {edges[e].x0, y};
-    weight_[e] = 0;
+    state_[e].since = {edges[e].x0, y};
+    state_[e].weight = 0;
     push_event({edges[e].y1, kEnd, e, 0});
   }
   update_weight(p, y);
@@ -253,10 +253,8 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     return a.y0 < b.y0 || (a.y0 == b.y0 && (a.x0 < b.x0 || (a.x0 == b.x0 && a.dxdy < b.dxdy)));
   });
   pos_.assign(n, -1);
-  left_winding_.assign(n, 0);
+  state_.assign(n, EdgeState{});
   left_face_.assign(n, 0);
-  weight_.assign(n, 0);
-  since_.assign(n, Point{});
   dirty_.assign(n, 0);
   order_.clear();
   heap_.clear();
@@ -280,19 +278,20 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
   state.faces.reset();
 
   auto emit_at = [&](std::uint32_t e, double y, double x) {  // x: the edge's x at y
-    if (weight_[e] != 0 && y > since_[e].y) out.piece(edges[e], since_[e].y, since_[e].x, y, x, weight_[e]);
-    since_[e] = {x, y};
+    EdgeState& st = state_[e];
+    if (st.weight != 0 && y > st.since.y) out.piece(edges[e], st.since.y, st.since.x, y, x, st.weight);
+    st.since = {x, y};
   };
   auto emit = [&](std::uint32_t e, double y) { emit_at(e, y, x_of(edges[e], y)); };
   auto right_face = [&](std::size_t p) { return p + 1 < order_.size() ? left_face_[order_[p + 1]] : 0; };
   auto update_weight = [&](std::size_t p, double y) {
     const std::uint32_t e = order_[p];
-    const int wl = left_winding_[e];
+    const int wl = state_[e].left_winding;
     const int wr = wl + edges[e].winding;
     const int w = static_cast<int>(filled(wr, right_face(p))) - static_cast<int>(filled(wl, left_face_[e]));
-    if (w != weight_[e]) {
+    if (w != state_[e].weight) {
       emit(e, y);
-      weight_[e] = static_cast<std::int8_t>(w);
+      state_[e].weight = static_cast<std::int8_t>(w);
     }
   };
 
@@ -367,18 +366,18 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
       }
       const std::uint32_t e = order_[i];
       const int winding = band_w_[i];
-      int wl = left_winding_[e];
+      int wl = state_[e].left_winding;
       for (std::uint32_t k = b; k < end; ++k) {
         wl += band_sorted_[k].delta;
         const int w = static_cast<int>(filled(wl + winding, 0)) - static_cast<int>(filled(wl, 0));
-        if (w != weight_[e]) {
+        if (w != state_[e].weight) {
           emit_at(e, band_sorted_[k].y, band_sorted_[k].x);
-          weight_[e] = static_cast<std::int8_t>(w);
+          state_[e].weight = static_cast<std::int8_t>(w);
         }
       }
       // The inversions are exactly the pairs whose order changed, so this is the prefix sum of the windings left
       // of e in the order at y1 (integers: no round-off).
-      left_winding_[e] = wl;
+      state_[e].left_winding = wl;
     }
     // The order at y1.
     scratch_.resize(m);
@@ -489,8 +488,8 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
       order_[pa + 1] = a;
       pos_[b] = p;
       pos_[a] = p + 1;
-      left_winding_[b] = left_winding_[a];
-      left_winding_[a] = left_winding_[b] + edges[b].winding;
+      state_[b].left_winding = state_[a].left_winding;
+      state_[a].left_winding = state_[b].left_winding + edges[b].winding;
       if (track_faces) {
         left_face_[b] = left_face_[a];
         left_face_[a] = state.faces.make();  // the face opening below the crossing point
@@ -536,10 +535,10 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
         order_[p] = s;
         pos_[s] = p;
         pos_[e] = -1;
-        left_winding_[s] = left_winding_[e];
+        state_[s].left_winding = state_[e].left_winding;
         left_face_[s] = left_face_[e];
-        weight_[s] = weight_[e];
-        since_[s] = {es.x0, y};
+        state_[s].weight = state_[e].weight;
+        state_[s].since = {es.x0, y};
         dirty_[s] = 1;
         replaced_.push_back(s);
         push_event({es.y1, kEnd, s, 0});
@@ -636,8 +635,8 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
       }
       scratch_.push_back(s);
       dirty_[s] = 1;
-      since_[s] = {es.x0, y};
-      weight_[s] = 0;
+      state_[s].since = {es.x0, y};
+      state_[s].weight = 0;
       push_event({es.y1, kEnd, s, 0});
     }
     while (oi < order_.size()) scratch_.push_back(order_[oi++]);
@@ -647,7 +646,7 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     for (std::size_t p = 0; p < order_.size(); ++p) {
       const std::uint32_t e = order_[p];
       pos_[e] = static_cast<std::int32_t>(p);
-      left_winding_[e] = w;
+      state_[e].left_winding = w;
       w += edges[e].winding;
     }
     if (track_faces) {

@@ -73,10 +73,13 @@ class BoundarySweep {
   std::int64_t lowest_pending_ = 0;           // no bucket below this row holds events
   std::vector<std::uint32_t> order_;   // active edges sorted by x at the sweep line
   std::vector<std::int32_t> pos_;      // position of each edge in order_, -1 when inactive
-  std::vector<std::int32_t> left_winding_;  // winding number just left of each active edge
   std::vector<std::int32_t> left_face_;     // NonExterior: face id just left of each active edge
-  std::vector<std::int8_t> weight_;    // filled(right) - filled(left) of each active edge
-  std::vector<Point> since_;           // the point of the edge from which weight_ holds
+  struct EdgeState {  // of each active edge, together: a crossing touches all of it
+    Point since;               // the point of the edge from which `weight` holds
+    std::int32_t left_winding = 0;  // winding number just left of the edge
+    std::int8_t weight = 0;    // filled(right) - filled(left)
+  };
+  std::vector<EdgeState> state_;
   std::vector<std::uint8_t> dirty_;    // edges whose neighbours changed in the current batch
   std::vector<std::uint32_t> scratch_;
   std::vector<std::uint8_t> consumed_;
