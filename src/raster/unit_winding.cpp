@@ -47,9 +47,19 @@ bool UnitWindingTest::operator()(const std::vector<Edge>& edges) {
     }
     chains_.push_back({e.y0, e.x0, e.dxdy, i, i, e.winding});
   }
-  std::sort(chains_.begin(), chains_.end(), [](const Chain& a, const Chain& b) {
+  const auto by_top = [](const Chain& a, const Chain& b) {
     return a.top_y < b.top_y || (a.top_y == b.top_y && (a.top_x < b.top_x || (a.top_x == b.top_x && a.top_dxdy < b.top_dxdy)));
-  });
+  };
+  if (chains_.size() > 16) {
+    std::sort(chains_.begin(), chains_.end(), by_top);
+  } else {  // most paths are small: a plain insertion sort costs less than setting up std::sort
+    for (std::size_t i = 1; i < chains_.size(); ++i) {
+      const Chain c = chains_[i];
+      std::size_t j = i;
+      for (; j > 0 && by_top(c, chains_[j - 1]); --j) chains_[j] = chains_[j - 1];
+      chains_[j] = c;
+    }
+  }
 
   active_.clear();
   const std::size_t budget = kWorkPerEdge * n + 64;
@@ -60,13 +70,15 @@ bool UnitWindingTest::operator()(const std::vector<Edge>& edges) {
     // The next height: the earliest end among the active edges, or the next chain's top.
     double y = inf;
     std::size_t earliest = 0;
-    for (std::size_t i = 0; i < active_.size(); ++i) {
-      const double y1 = active_[i].edge.y1;
+    const std::size_t count = active_.size();
+    const Active* active = active_.data();
+    for (std::size_t i = 0; i < count; ++i) {
+      const double y1 = active[i].edge.y1;
       earliest = y1 < y ? i : earliest;
       y = std::min(y, y1);
     }
     const double next_top = next_chain < chains_.size() ? chains_[next_chain].top_y : inf;
-    work += active_.size();
+    work += count;
     if (work > budget) return false;
     if (y < next_top && active_[earliest].next != active_[earliest].end) {
       // The common case: one chain passes a vertex. Its new edge takes its place; only its neighbours can cross it.
@@ -74,7 +86,7 @@ bool UnitWindingTest::operator()(const std::vector<Edge>& edges) {
       a.edge = edges[a.next];
       a.next += a.step;
       if (earliest > 0 && !in_order_at_first_end(active_[earliest - 1].edge, a.edge)) return false;
-      if (earliest + 1 < active_.size() && !in_order_at_first_end(a.edge, active_[earliest + 1].edge)) return false;
+      if (earliest + 1 < count && !in_order_at_first_end(a.edge, active_[earliest + 1].edge)) return false;
       continue;
     }
     y = std::min(y, next_top);
