@@ -528,5 +528,72 @@ TEST(UnitWinding, WhateverItDecidesExactMatchesReferenceOnTouchingShapes) {
   }
 }
 
+TEST(UnitWinding, ShortcutAgreesWithBoundarySweepOnGlyphLikePaths) {
+  // Rings (a hole drawn the other way), boxes, star-shaped polygons and thin bars, a few per path, placed at random so
+  // that they are apart, touch, nest, overlap or leave the image: whichever way the test decides, exact coverage with
+  // the shortcut must be the boundary sweep's.
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(0, 1);
+  auto ring = [&](double cx, double cy, double r0, double r1, int n, bool reverse_hole) {
+    Polygon outer, inner;
+    for (int k = 0; k < n; ++k) {
+      const double a = 6.283185307179586 * k / n;
+      outer.push_back({cx + r1 * std::cos(a), cy + r1 * std::sin(a)});
+      inner.push_back({cx + r0 * std::cos(a), cy + r0 * std::sin(a)});
+    }
+    if (reverse_hole) std::reverse(inner.begin(), inner.end());
+    return std::vector<Polygon>{outer, inner};
+  };
+  int accepted = 0;
+  for (int t = 0; t < 150; ++t) {
+    std::vector<Polygon> contours;
+    const int parts = 1 + static_cast<int>(rng() % 3);
+    for (int k = 0; k < parts; ++k) {
+      const double cx = -4 + 40 * u(rng), cy = -4 + 40 * u(rng);
+      switch (rng() % 4) {
+        case 0: {
+          const double r1 = 2 + 10 * u(rng);
+          for (Polygon& p : ring(cx, cy, r1 * (0.3 + 0.6 * u(rng)), r1, 6 + static_cast<int>(rng() % 40), rng() % 5 != 0)) {
+            contours.push_back(p);
+          }
+          break;
+        }
+        case 1: contours.push_back(ccw_box(cx, cy, cx + 0.3 + 12 * u(rng), cy + 0.3 + 12 * u(rng))); break;
+        case 2: contours.push_back(ccw_box(cx, cy, cx + 0.05 + 0.5 * u(rng), cy + 20 * u(rng))); break;  // a bar
+        default: {
+          Polygon p;
+          const int n = 3 + static_cast<int>(rng() % 30);
+          for (int i = 0; i < n; ++i) {
+            const double a = 6.283185307179586 * (i + 0.8 * u(rng)) / n, d = 1 + 9 * u(rng);
+            p.push_back({cx + d * std::cos(a), cy + d * std::sin(a)});
+          }
+          contours.push_back(p);
+        }
+      }
+      if (rng() % 2) std::reverse(contours.back().begin(), contours.back().end());
+    }
+    const Polylines lines = exact::polylines_of(contours);
+    Rasterizer probe;
+    CoverageGrid probe_grid(40, 40);
+    probe.fill(lines, FillRule::NonZero, AntiAlias::Exact, 40, 40, probe_grid);
+    accepted += detail::UnitWindingTest{}(probe.edges());
+    for (FillRule rule : kWindingRules) {
+      Rasterizer with, without;
+      without.set_exact_shortcut(false);
+      CoverageGrid a(40, 40), b(40, 40);
+      with.fill(lines, rule, AntiAlias::Exact, 40, 40, a);
+      without.fill(lines, rule, AntiAlias::Exact, 40, 40, b);
+      double worst = 0;
+      for (int y = 0; y < 40; ++y) {
+        for (int x = 0; x < 40; ++x) worst = std::max(worst, std::abs(double{a.at(x, y)} - b.at(x, y)));
+      }
+      EXPECT_LE(worst, 1e-6) << "case " << t << " rule " << rule_name(rule);
+      EXPECT_TRUE(a.violations().empty() && b.violations().empty());
+    }
+  }
+  EXPECT_GT(accepted, 20);  // both answers are exercised
+  EXPECT_LT(accepted, 130);
+}
+
 }  // namespace
 }  // namespace vraster::test

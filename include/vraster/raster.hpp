@@ -131,6 +131,11 @@ class Rasterizer {
   void set_dense_limit(std::int64_t cells) { dense_limit_ = cells; }
   static constexpr std::int64_t kDefaultDenseLimit = 8192;
 
+  /// Exact fills of paths whose winding is only ever 0 and one other value take the analytic sweep, which is exact
+  /// for them (same coverage up to round-off). false sends every exact fill through the boundary sweep (tests and
+  /// the fuzzer use that to compare both paths).
+  void set_exact_shortcut(bool on) { exact_shortcut_ = on; }
+
  private:
   void build_edges(const Polylines& lines, int width, int height);
   void build_unclipped_edges(const Polylines& lines);
@@ -163,6 +168,7 @@ class Rasterizer {
   std::vector<double> dense_block_;          // small paths: rows x columns of cells, zero between fills
   std::vector<float> mask_cells_;            // fill_mask: rows x stride float cells, zero between fills
   std::int64_t dense_limit_ = kDefaultDenseLimit;
+  bool exact_shortcut_ = true;
   std::unique_ptr<detail::BoundarySweep> boundary_;
   std::unique_ptr<detail::UnitWindingTest> unit_winding_;  // exact mode: whether analytic is already exact
 };

@@ -240,7 +240,7 @@ void Rasterizer::fill(const Polylines& lines, FillRule rule, AntiAlias aa, int w
     rule = FillRule::NonZero;
   } else {
     build_edges(lines, width, height);
-    if (aa == AntiAlias::Exact && !(*unit_winding_)(edges_)) {
+    if (aa == AntiAlias::Exact && !(exact_shortcut_ && (*unit_winding_)(edges_))) {
       // Only the boundary of the filled region, accumulated row by row as the sweep finds it: its pieces never
       // cross, so the accumulation is exact. (Where the winding is only ever 0 or one other value, analytic is
       // already exact: the shapes most scenes are made of take that path.)
