@@ -40,8 +40,13 @@ bool UnitWindingTest::operator()(const std::vector<Edge>& edges) {
       const Edge& p = edges[i - 1];
       const bool joins = e.winding > 0 ? p.x1 == e.x0 && p.y1 == e.y0 : e.x1 == p.x0 && e.y1 == p.y0;
       if (joins) {
-        chains_.back().last = i;
-        if (e.winding < 0) chains_.back().top_y = e.y0, chains_.back().top_x = e.x0, chains_.back().top_dxdy = e.dxdy;
+        Chain& c = chains_.back();
+        c.last = i;
+        if (e.winding < 0) {  // an upward chain is listed bottom to top: its newest edge is its top
+          c.top_y = e.y0;
+          c.top_x = e.x0;
+          c.top_dxdy = e.dxdy;
+        }
         continue;
       }
     }
