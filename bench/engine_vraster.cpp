@@ -1,6 +1,6 @@
 // vraster itself: Renderer::fill per item into a vraster::Image, the calls svg::render makes.
 #include "engines.hpp"
-#include "vraster/paint.hpp"
+#include "vraster/renderer.hpp"
 
 namespace bench {
 namespace {

@@ -17,7 +17,7 @@
 
 #include "svg_subset/svg.hpp"
 #include "vraster/lines.hpp"
-#include "vraster/paint.hpp"
+#include "vraster/renderer.hpp"
 #include "vraster/stroke.hpp"
 
 namespace {

@@ -30,7 +30,7 @@
 #include <string>
 #include <vector>
 
-#include "vraster/paint.hpp"
+#include "vraster/renderer.hpp"
 #include "vraster/stroke.hpp"
 
 namespace vraster {

@@ -16,7 +16,7 @@
 
 #include "vraster/geometry.hpp"
 #include "vraster/image.hpp"
-#include "vraster/paint.hpp"
+#include "vraster/renderer.hpp"
 #include "vraster/path.hpp"
 #include "vraster/raster.hpp"
 

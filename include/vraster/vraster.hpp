@@ -5,7 +5,7 @@
 #include "vraster/flatten.hpp"
 #include "vraster/geometry.hpp"
 #include "vraster/image.hpp"
-#include "vraster/paint.hpp"
+#include "vraster/renderer.hpp"
 #include "vraster/path.hpp"
 #include "vraster/png.hpp"
 #include "vraster/raster.hpp"

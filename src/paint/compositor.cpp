@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "vraster/paint.hpp"
+#include "vraster/renderer.hpp"
 
 namespace vraster {
 namespace {

@@ -1,5 +1,5 @@
 // The fill entry point: path -> flatten (clipped to the image) -> rasterize -> composite.
-#include "vraster/paint.hpp"
+#include "vraster/renderer.hpp"
 
 namespace vraster {
 

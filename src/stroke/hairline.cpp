@@ -9,7 +9,7 @@
 
 #include "stroke/internal.hpp"
 #include "vraster/lines.hpp"
-#include "vraster/paint.hpp"
+#include "vraster/renderer.hpp"
 #include "vraster/stroke.hpp"
 
 namespace vraster {

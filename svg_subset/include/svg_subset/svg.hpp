@@ -13,7 +13,7 @@
 #include "vraster/error.hpp"
 #include "vraster/geometry.hpp"
 #include "vraster/image.hpp"
-#include "vraster/paint.hpp"
+#include "vraster/renderer.hpp"
 #include "vraster/path.hpp"
 #include "vraster/raster.hpp"
 #include "vraster/stroke.hpp"

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "vraster/image.hpp"
-#include "vraster/paint.hpp"
+#include "vraster/renderer.hpp"
 #include "vraster/raster.hpp"
 #include "vraster_text/font.hpp"
 #include "vraster_text/layout.hpp"

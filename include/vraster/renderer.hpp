@@ -1,4 +1,4 @@
-// vraster: the compositor (coverage spans + paint -> pixels) and the fill entry point.
+// vraster: the fill entry point (Renderer) and the solid source-over compositor.
 #pragma once
 
 #include "vraster/flatten.hpp"
