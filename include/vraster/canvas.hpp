@@ -147,7 +147,11 @@ class Canvas {
   /// bounds) until end_layer() composites it with the options given here. Layers nest; save/restore inside a
   /// layer are balanced by end_layer().
   void begin_layer(const LayerOptions& options = {});
-  void begin_layer(float opacity) { begin_layer(LayerOptions{opacity}); }
+  void begin_layer(float opacity) {
+    LayerOptions options;
+    options.opacity = opacity;
+    begin_layer(options);
+  }
   void end_layer();
 
   // ---- pixels ----
