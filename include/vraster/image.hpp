@@ -1,6 +1,7 @@
 // vraster: images (RGBA, premultiplied) and colours.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -45,6 +46,24 @@ struct BasicImage {
 
 using Image = BasicImage<std::uint8_t>;
 using Image16 = BasicImage<std::uint16_t>;
+
+/// A view of pixels someone else owns: premultiplied RGBA with channels of type T, covering the device pixels
+/// [x0, x0 + width) x [y0, y0 + height). Pixel (x, y) starts at pixels + (y - y0) * stride + (x - x0) * 4, so a
+/// layer that covers only part of the canvas is addressed in canvas coordinates. `stride` counts channels (T
+/// values), not bytes.
+template <class T>
+struct ImageView {
+  T* pixels = nullptr;
+  int x0 = 0, y0 = 0;
+  int width = 0, height = 0;
+  std::ptrdiff_t stride = 0;
+
+  T* pixel(int x, int y) const { return pixels + (y - y0) * stride + static_cast<std::ptrdiff_t>(x - x0) * 4; }
+  bool contains(int x, int y) const { return x >= x0 && y >= y0 && x < x0 + width && y < y0 + height; }
+  static ImageView of(BasicImage<T>& image) {
+    return {image.data.data(), 0, 0, image.width, image.height, static_cast<std::ptrdiff_t>(image.width) * 4};
+  }
+};
 
 /// Checks an image size against the limits; throws vraster::Error naming the problem.
 void check_image_size(double width, double height);

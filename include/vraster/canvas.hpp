@@ -1,0 +1,177 @@
+// vraster: the canvas, the front door for embedding programs, the SVG renderer, text and the CLI.
+//
+// The HTML Canvas 2D model over a vraster image:
+//   state stack (transform, clip, paints, line style, alpha, operator, rule, antialiasing, smoothing, shadow)
+//   + a current path (user coordinates mapped by the transform as each point is added)
+//   -> fill / stroke (stroke = geometry: the outline is filled non-zero) / clip / images / coverage masks
+//   -> the rasterizer's coverage -> clip -> Compositor (paint + operator) -> the target or the innermost layer.
+//
+// Drawing calls never throw for bad numbers: as the canvas spec says, a NaN or infinite argument makes the call do
+// nothing (argument-less calls on an invalid path do nothing either). Errors a caller must see (sizes out of
+// range, out of memory) throw vraster::Error.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "vraster/composite.hpp"
+#include "vraster/geometry.hpp"
+#include "vraster/image.hpp"
+#include "vraster/paint.hpp"
+#include "vraster/path.hpp"
+#include "vraster/raster.hpp"
+#include "vraster/stroke.hpp"
+
+namespace vraster {
+
+/// How a layer's mask turns into coverage (SVG mask-type).
+enum class MaskMode : std::uint8_t { Alpha, Luminance };
+
+/// How begin_layer() composites the layer when it ends.
+struct LayerOptions {
+  float opacity = 1;
+  CompositeOp op = CompositeOp::SourceOver;
+  /// Optional mask in device pixels, its top-left pixel at (mask_x, mask_y); pixels outside it mask everything.
+  std::shared_ptr<const Image> mask;
+  int mask_x = 0, mask_y = 0;
+  MaskMode mask_mode = MaskMode::Alpha;
+};
+
+/// A drop shadow as the HTML canvas has it: drawn under each shape when colour alpha > 0 and (blur > 0 or an
+/// offset is non-zero). Offsets are in device pixels (not transformed), blur is the canvas shadowBlur (a
+/// Gaussian with standard deviation blur / 2).
+struct Shadow {
+  Color color = Color::transparent();
+  double offset_x = 0, offset_y = 0;
+  double blur = 0;
+};
+
+class Canvas {
+ public:
+  /// Draws onto `target` (which must outlive the canvas). 16-bit targets get 16-bit paint and compositing.
+  explicit Canvas(Image& target);
+  explicit Canvas(Image16& target);
+  ~Canvas();
+  Canvas(Canvas&&) noexcept;
+  Canvas& operator=(Canvas&&) noexcept;
+
+  int width() const;
+  int height() const;
+
+  // ---- state ----
+  /// Pushes the whole drawing state (not the current path).
+  void save();
+  /// Pops it; without a matching save() it does nothing.
+  void restore();
+
+  // Transform: each call post-multiplies (the new transform applies to coordinates first), as on the canvas.
+  void translate(double x, double y);
+  void scale(double sx, double sy);
+  void rotate(double radians);
+  void transform(const Affine& m);
+  void set_transform(const Affine& m);
+  void reset_transform();
+  Affine get_transform() const;
+
+  void set_fill_paint(const Paint& paint);
+  void set_stroke_paint(const Paint& paint);
+  void set_fill_color(Color color);
+  void set_stroke_color(Color color);
+  const Paint& fill_paint() const;
+  const Paint& stroke_paint() const;
+
+  void set_line_width(double width);  ///< <= 0 or non-finite: ignored
+  void set_line_cap(LineCap cap);
+  void set_line_join(LineJoin join);
+  void set_miter_limit(double limit);  ///< <= 0 or non-finite: ignored
+  /// Dash lengths; an odd count is repeated; any negative or non-finite value: the call is ignored.
+  void set_line_dash(std::span<const double> dashes);
+  void set_line_dash_offset(double offset);
+  const StrokeStyle& line_style() const;
+
+  void set_global_alpha(double alpha);  ///< outside [0, 1] or non-finite: ignored
+  void set_composite(CompositeOp op);
+  void set_fill_rule(FillRule rule);  ///< the rule of fill() and clip() without an explicit rule
+  /// Any mode but AntiAlias::Fxaa (use apply_fxaa(), a post-filter, instead: set_anti_alias(Fxaa) is ignored).
+  void set_anti_alias(AntiAlias aa);
+  void set_tolerance(double device_pixels);  ///< flattening tolerance; <= 0 or non-finite: ignored
+  void set_image_smoothing(bool on);
+  void set_image_filter(ImageFilter filter);  ///< the filter used by draw_image when smoothing is on
+  void set_shadow(const Shadow& shadow);
+
+  // ---- the current path (points mapped by the transform current when they are added) ----
+  void begin_path();
+  void move_to(double x, double y);
+  void line_to(double x, double y);
+  void quad_to(double cx, double cy, double x, double y);
+  void cubic_to(double x1, double y1, double x2, double y2, double x, double y);
+  /// Circular arc around (cx, cy) from angle a0 to a1 (radians), clockwise on screen unless `ccw`.
+  void arc(double cx, double cy, double r, double a0, double a1, bool ccw = false);
+  void arc_to(double x1, double y1, double x2, double y2, double r);
+  void ellipse(double cx, double cy, double rx, double ry, double rotation, double a0, double a1, bool ccw = false);
+  void rect(double x, double y, double w, double h);
+  /// Rounded rectangle with one radius for every corner (the canvas roundRect with a single radius).
+  void round_rect(double x, double y, double w, double h, double radius);
+  void close_path();
+
+  // ---- drawing ----
+  void fill();
+  void fill(FillRule rule);
+  /// Fills a path given in user space (mapped by the current transform); the current path is unchanged.
+  void fill(const Path& path);
+  void fill(const Path& path, FillRule rule);
+  void stroke();
+  void stroke(const Path& path);
+  /// Intersects the clip with the current path (or `path`) under `rule`, antialiased as the current mode says.
+  void clip();
+  void clip(FillRule rule);
+  void clip(const Path& path, FillRule rule);
+  void fill_rect(double x, double y, double w, double h);
+  void stroke_rect(double x, double y, double w, double h);
+  /// Sets the pixels of the rectangle (inside the clip) to transparent.
+  void clear_rect(double x, double y, double w, double h);
+
+  /// Draws `image` (premultiplied) into the destination rectangle (user space), from the source rectangle.
+  void draw_image(const Image& image, double dx, double dy);
+  void draw_image(const Image& image, double dx, double dy, double dw, double dh);
+  void draw_image(const Image& image, double sx, double sy, double sw, double sh, double dx, double dy, double dw,
+                  double dh);
+  /// Paints the current fill paint through an 8-bit coverage mask whose pixel (0, 0) lands on device pixel
+  /// (x, y), untransformed (cached glyphs).
+  void fill_mask(const std::uint8_t* mask, int width, int height, std::ptrdiff_t stride, int x, int y);
+
+  // ---- layers ----
+  /// Starts a layer: drawing goes to a transparent buffer covering only the area it can touch (the clip's
+  /// bounds) until end_layer() composites it with the options given here. Layers nest; save/restore inside a
+  /// layer are balanced by end_layer().
+  void begin_layer(const LayerOptions& options = {});
+  void begin_layer(float opacity) {
+    LayerOptions options;
+    options.opacity = opacity;
+    begin_layer(options);
+  }
+  void end_layer();
+
+  // ---- pixels ----
+  /// Premultiplied RGBA of the rectangle (pixels outside the canvas are transparent).
+  Image get_pixels(int x, int y, int w, int h) const;
+  /// Writes premultiplied RGBA at (x, y), ignoring transform, clip, alpha and operator (putImageData).
+  void put_pixels(const Image& pixels, int x, int y);
+  /// FXAA over the target (a post-filter: call it when the drawing is done).
+  void apply_fxaa();
+
+  // ---- hit testing (user coordinates mapped by the current transform) ----
+  bool is_point_in_path(double x, double y) const;
+  bool is_point_in_path(double x, double y, FillRule rule) const;
+  bool is_point_in_path(const Path& path, double x, double y, FillRule rule) const;
+  bool is_point_in_stroke(double x, double y) const;
+  bool is_point_in_stroke(const Path& path, double x, double y) const;
+
+ private:
+  struct Impl;  // src/canvas/
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vraster
