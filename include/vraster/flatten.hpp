@@ -41,6 +41,10 @@ struct Polylines {
   }
 };
 
+/// Most points one flatten() call may produce (2^22: 64 MiB of points, and the edges the rasterizer builds from
+/// them). More throws vraster::Error: the tolerance is too fine for the curves' size on the device.
+inline constexpr std::size_t kMaxFlattenedPoints = std::size_t{1} << 22;
+
 /// Default flattening tolerance in device pixels.
 inline constexpr double kDefaultTolerance = 0.1;
 
@@ -61,7 +65,8 @@ struct FlattenOptions {
 /// (k = 1/4 for quadratics, 3/4 for cubics). Then every point of the curve lies within `tolerance` of the
 /// polyline (and every polyline point within `tolerance` of the curve). Curves larger than the clip are first
 /// split in halves so that n stays small; without a clip n is capped at 2^20 per curve.
-/// Throws vraster::Error when a transformed coordinate is not finite or the tolerance is not positive.
+/// Throws vraster::Error when a transformed coordinate is not finite, the tolerance is not positive, or the
+/// result would pass kMaxFlattenedPoints.
 void flatten(const Path& path, const Affine& transform, const FlattenOptions& options, Polylines& out);
 
 /// The number of uniform segments Wang's formula asks for (exposed for tests).

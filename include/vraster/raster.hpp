@@ -136,6 +136,13 @@ class Rasterizer {
   /// the fuzzer use that to compare both paths).
   void set_exact_shortcut(bool on);
 
+  /// Work budget of AntiAlias::Exact (and of NonExterior, which resolves the same arrangement): a fill whose
+  /// edges cross more than this many times inside pixel rows is drawn with AntiAlias::Analytic instead (and
+  /// NonExterior as NonZero), and counted in exact_fallbacks() so that callers can warn.
+  static constexpr std::uint64_t kMaxExactCrossings = std::uint64_t{1} << 22;
+  /// How many fills of this rasterizer took that fallback so far.
+  std::uint64_t exact_fallbacks() const;
+
  private:
   std::unique_ptr<detail::RasterizerImpl> impl_;  // one allocation per Rasterizer, none per fill
 };

@@ -90,9 +90,12 @@ class Renderer {
   const Polylines& flatten_for_fill(const Path& path, const Affine& transform, double tolerance, int width,
                                     int height);
   Rasterizer& rasterizer() { return rasterizer_; }
+  /// Points flattened by this renderer's fills so far (for work limits across many draw calls).
+  std::uint64_t flattened_points() const { return flattened_points_; }
 
  private:
   Polylines lines_;
+  std::uint64_t flattened_points_ = 0;
   Rasterizer rasterizer_;
   std::unique_ptr<detail::RendererScratch> scratch_;
 };

@@ -64,8 +64,12 @@ DashVerdict check_dashes(const Path& path, const std::vector<double>& dashes);
 /// boundary (curves flattened at tolerance/2, round joins and caps with chord error <= tolerance/2).
 /// Zero-length subpaths (`M x y L x y`, `M x y Z`) give a dot with round or square caps (square aligned with
 /// the x axis) and nothing with butt caps; a lone `M x y` gives nothing.
-/// Never throws for a valid Path; returns an empty path for an invisible style.
+/// Returns an empty path for an invisible style. Throws vraster::Error when the outline would need more than
+/// kMaxStrokeOutlinePoints points (a stroke vastly wider than the tolerance on a long curve).
 Path stroke_to_path(const Path& path, const StrokeStyle& style, double tolerance);
+
+/// Most points one stroke outline may have (2^22, 64 MiB of points); see stroke_to_path.
+inline constexpr std::size_t kMaxStrokeOutlinePoints = std::size_t{1} << 22;
 
 /// The user-space tolerance that gives `device_tolerance` after `transform` (divides by the largest scale).
 double user_tolerance(const Affine& transform, double device_tolerance);
@@ -107,6 +111,8 @@ struct StrokeRenderOptions {
 
 /// Strokes `path` in user space, maps the outline by `transform` and fills it (non-zero) with `color`
 /// (source-over). For Image (8-bit) and Image16. Draws nothing for an invisible style or a non-finite transform.
+/// Only the geometry that can reach the image is outlined (dashes are still cut along the whole path); throws
+/// vraster::Error when the visible outline passes kMaxStrokeOutlinePoints.
 template <class T>
 void stroke_path(BasicImage<T>& image, const Path& path, const Affine& transform, const StrokeStyle& style, Color color,
                  const StrokeRenderOptions& options = {});

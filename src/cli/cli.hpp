@@ -4,6 +4,10 @@
 #include <string>
 #include <string_view>
 
+namespace vraster {
+class Renderer;
+}
+
 namespace vraster::cli {
 
 /// A usage mistake on the command line (reported with exit status 2).
@@ -22,6 +26,10 @@ int run_accuracy(int argc, char** argv);
 int run_mesh(int argc, char** argv);
 int run_shading(int argc, char** argv);
 int run_depth(int argc, char** argv);
+
+/// Prints a warning when some exact (or non-exterior) fills of `renderer` went over the crossing budget and
+/// were drawn analytic (or non-zero) instead (see Rasterizer::kMaxExactCrossings).
+void warn_about_exact_fallbacks(Renderer& renderer);
 
 /// The embedded demo scene (SVG text).
 std::string_view demo_svg();

@@ -18,6 +18,14 @@
 #include "vraster/vraster.hpp"
 
 namespace vraster::cli {
+
+void warn_about_exact_fallbacks(Renderer& renderer) {
+  if (const std::uint64_t n = renderer.rasterizer().exact_fallbacks(); n > 0) {
+    std::cerr << "vraster: warning: " << n << " fill(s) had more than " << Rasterizer::kMaxExactCrossings
+              << " edge crossings inside pixel rows (the exact-mode work limit) and were drawn with --aa analytic "
+                 "(non-exterior as non-zero) instead\n";
+  }
+}
 namespace {
 
 constexpr FillRule kRules[] = {FillRule::EvenOdd,  FillRule::NonZero,  FillRule::NonExterior,
@@ -190,6 +198,7 @@ int run_fill_rules(int argc, char** argv) {
       x += 16 + label_width(label) + 10;
     }
   }
+  warn_about_exact_fallbacks(renderer);
   write_png(output, sheet);
   std::cout << "vraster fill-rules: wrote " << output << "\n";
   return 0;

@@ -177,6 +177,7 @@ void render_document(const svg::Document& doc, const RenderArgs& a) {
   } else {
     frame();
   }
+  warn_about_exact_fallbacks(renderer);
   if (!a.output.empty()) write_png(a.output, image);
 }
 

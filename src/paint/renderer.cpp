@@ -20,6 +20,7 @@ const Polylines& Renderer::flatten_for_fill(const Path& path, const Affine& tran
   options.tolerance = tolerance;
   options.clip = &clip;
   flatten(path, transform, options, lines_);
+  flattened_points_ += lines_.points.size();
   return lines_;
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 
 #include "vraster/error.hpp"
 
@@ -141,6 +142,7 @@ class Flattener {
 
   [[gnu::always_inline]] void emit_quad(Point p0, Point p1, Point p2) {
     const int n = quad_segments(p0, p1, p2, quad_factor_);
+    if (out_.points.size() + static_cast<std::size_t>(n) > limit_) [[unlikely]] throw_too_many_points();
     // Power basis: B(t) = (a t + b) t + p0.
     const Point a = p0 - p1 * 2 + p2, b = (p1 - p0) * 2;
     const double step = inverse_count(n);
@@ -153,6 +155,7 @@ class Flattener {
 
   [[gnu::always_inline]] void emit_cubic(Point p0, Point p1, Point p2, Point p3) {
     const int n = cubic_segments(p0, p1, p2, p3, cubic_factor_);
+    if (out_.points.size() + static_cast<std::size_t>(n) > limit_) [[unlikely]] throw_too_many_points();
     // Power basis: B(t) = ((a t + b) t + c) t + p0.
     const Point a = p3 - p0 + (p1 - p2) * 3, b = (p0 - p1 * 2 + p2) * 3, c = (p1 - p0) * 3;
     const double step = inverse_count(n);
@@ -170,8 +173,15 @@ class Flattener {
     open_ = false;
   }
 
+  [[noreturn, gnu::cold, gnu::noinline]] void throw_too_many_points() const {
+    throw Error("flatten: the path needs more than " + std::to_string(kMaxFlattenedPoints) +
+                " line segments at tolerance " + std::to_string(options_.tolerance) +
+                " px (the limit per path); use a larger tolerance");
+  }
+
   const FlattenOptions& options_;
   Polylines& out_;
+  std::size_t limit_ = out_.points.size() + kMaxFlattenedPoints;  // the points this call may add
   Rect clip_{};
   double clip_size_ = 0;
   double quad_factor_, cubic_factor_;

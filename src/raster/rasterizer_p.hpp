@@ -21,8 +21,12 @@ class RasterizerImpl {
   std::vector<Edge> edges_;
   std::int64_t dense_limit_ = Rasterizer::kDefaultDenseLimit;
   bool exact_shortcut_ = true;
+  std::uint64_t exact_fallbacks_ = 0;  // exact fills over the crossing budget, drawn analytic instead
 
  private:
+  /// Whether edges_ (clipped) have at most Rasterizer::kMaxExactCrossings crossings inside pixel rows
+  /// (exact_budget.cpp).
+  bool exact_within_budget(int height);
   void build_edges(const Polylines& lines, int width, int height);
   void build_unclipped_edges(const Polylines& lines);
   void clip_pieces(int width, int height);
@@ -34,6 +38,8 @@ class RasterizerImpl {
   void add_edge(Point top, Point bottom, int winding);
   void add_clipped_segment(Point p, Point q, int width, int height);
 
+  std::vector<std::int64_t> budget_rows_;    // exact budget: active-edge count changes per row
+  std::vector<std::uint32_t> budget_order_;  // exact budget: edges by top
   std::vector<Edge> horizontals_;            // NonExterior: horizontal segments (they matter for connectivity)
   std::vector<Edge> pieces_;                 // boundary pieces from the boundary sweep
   int y_min_ = 0, y_max_ = 0;               // rows touched by edges_, [y_min_, y_max_)

@@ -239,10 +239,20 @@ void Rasterizer::fill_mask(const Polylines& lines, FillRule rule, int width, int
 const std::vector<Edge>& Rasterizer::edges() const { return impl_->edges_; }
 void Rasterizer::set_dense_limit(std::int64_t cells) { impl_->dense_limit_ = cells; }
 void Rasterizer::set_exact_shortcut(bool on) { impl_->exact_shortcut_ = on; }
+std::uint64_t Rasterizer::exact_fallbacks() const { return impl_->exact_fallbacks_; }
 
 void detail::RasterizerImpl::fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
                                   CoverageSink& sink) {
   if (width <= 0 || height <= 0) return;
+  if (rule == FillRule::NonExterior) {
+    // Over the work budget (counted on the visible edges): non-zero, the nearest rule that needs no arrangement.
+    build_edges(lines, width, height);
+    if (!exact_within_budget(height)) {
+      ++exact_fallbacks_;
+      rule = FillRule::NonZero;
+      if (aa == AntiAlias::Exact) aa = AntiAlias::Analytic;
+    }
+  }
   if (rule == FillRule::NonExterior) {
     // The boundary of the non-exterior region, then a non-zero fill of it in the requested mode.
     build_unclipped_edges(lines);
@@ -255,9 +265,13 @@ void detail::RasterizerImpl::fill(const Polylines& lines, FillRule rule, AntiAli
     if (aa == AntiAlias::Exact && !(exact_shortcut_ && unit_winding_(edges_))) {
       // Only the boundary of the filled region, accumulated row by row as the sweep finds it: its pieces never
       // cross, so the accumulation is exact. (Where the winding is only ever 0 or one other value, analytic is
-      // already exact: the shapes most scenes are made of take that path.)
-      if (!edges_.empty()) boundary_.fill(edges_, rule, width, sink);
-      return;
+      // already exact: the shapes most scenes are made of take that path.) Over the crossing budget: analytic.
+      if (exact_within_budget(height)) {
+        if (!edges_.empty()) boundary_.fill(edges_, rule, width, sink);
+        return;
+      }
+      ++exact_fallbacks_;
+      aa = AntiAlias::Analytic;
     }
   }
   if (edges_.empty()) return;

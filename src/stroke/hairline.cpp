@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <optional>
 #include <type_traits>
 
 #include "stroke/internal.hpp"
@@ -237,7 +238,16 @@ void stroke_path(BasicImage<T>& image, const Path& path, const Affine& transform
     }
     return;
   }
-  const Path outline = stroke_to_path(path, style, user_tol);
+  // The user-space box of the image (plus a pixel): only geometry within the stroke's reach of it is outlined.
+  std::optional<Rect> visible;
+  if (transform.invertible()) {
+    const Affine inverse = transform.inverse();
+    const double w = image.width + 1.0, h = image.height + 1.0;
+    Rect box = Rect::from_point(inverse.apply({-1, -1}));
+    for (const Point corner : {Point{w, -1}, Point{-1, h}, Point{w, h}}) box.include(inverse.apply(corner));
+    if (is_finite(Point{box.x0, box.y0}) && is_finite(Point{box.x1, box.y1})) visible = box;
+  }
+  const Path outline = stroke_to_path_visible(path, style, user_tol, visible ? &*visible : nullptr);
   renderer.fill(image, outline, transform, color, FillOptions{FillRule::NonZero, options.aa, tolerance});
 }
 

@@ -43,3 +43,16 @@ struct RendererScratch {
 };
 
 }  // namespace vraster::detail
+
+namespace vraster {
+
+/// Keeps the parts of `in` that may reach `reachable` (the visible area grown by the stroke's reach): segments
+/// whose box misses it are dropped, splitting their piece into open runs whose new ends lie out of reach, so
+/// the caps there draw nothing visible. Dots outside are dropped.
+void clip_pieces(const std::vector<StrokePolyline>& in, const Rect& reachable, std::vector<StrokePolyline>& out);
+
+/// stroke_to_path with the geometry that cannot reach `visible` (user space; nullptr: everything) dropped
+/// before outlining. Dashes are cut first, so the pattern's phase is that of the whole path.
+Path stroke_to_path_visible(const Path& path, const StrokeStyle& style, double tolerance, const Rect* visible);
+
+}  // namespace vraster

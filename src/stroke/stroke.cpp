@@ -18,7 +18,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
+#include "vraster/error.hpp"
 #include "vraster/flatten.hpp"
 #include "stroke/internal.hpp"
 
@@ -174,11 +176,21 @@ void flatten_impl(const Path& path, double tolerance, const Rect* clip, std::vec
 
 // ---- step 3: outlining ----
 
+[[noreturn, gnu::cold]] void throw_outline_too_big() {
+  throw Error("stroke: the outline needs more than " + std::to_string(kMaxStrokeOutlinePoints) +
+              " points (the limit per stroke); the stroke is far wider than its curves are flat at this tolerance");
+}
+
 class Outliner {
  public:
   Outliner(const StrokeStyle& style, double tolerance, Path& out)
       : hw_(style.width / 2), style_(style), cap_(style.cap), tol_(tolerance / 2), out_(out) {
     miter_limit_ = std::max(1.0, std::isfinite(style.miter_limit) ? style.miter_limit : 1.0);
+  }
+
+  /// Bounded work: throws once the outline (emitted plus being built) passes kMaxStrokeOutlinePoints.
+  void check_budget() const {
+    if (emitted_ + left_.size() + right_.size() + contour_.size() > kMaxStrokeOutlinePoints) throw_outline_too_big();
   }
 
   void piece(const StrokePolyline& pl) {
@@ -212,6 +224,7 @@ class Outliner {
       for (std::size_t j = 0; j < n; ++j) {
         const std::size_t prev = (j + segs - 1) % segs;
         join(pl.points[j], prev, j, pl.corner[j] != 0);
+        check_budget();
       }
       emit(left_);
       std::reverse(right_.begin(), right_.end());
@@ -221,7 +234,10 @@ class Outliner {
     const Point n0 = normal_of(dirs_[0]);
     left_.push_back(pl.points[0] + n0 * hw_);
     right_.push_back(pl.points[0] - n0 * hw_);
-    for (std::size_t j = 1; j + 1 < n; ++j) join(pl.points[j], j - 1, j, pl.corner[j] != 0);
+    for (std::size_t j = 1; j + 1 < n; ++j) {
+      join(pl.points[j], j - 1, j, pl.corner[j] != 0);
+      check_budget();
+    }
     const Point pe = pl.points[n - 1], de = dirs_[segs - 1], ne = normal_of(de);
     left_.push_back(pe + ne * hw_);
     right_.push_back(pe - ne * hw_);
@@ -308,6 +324,8 @@ class Outliner {
   // Emits pts as a closed contour.
   void emit(const std::vector<Point>& pts) {
     if (pts.size() < 2) return;
+    emitted_ += pts.size();
+    if (emitted_ > kMaxStrokeOutlinePoints) throw_outline_too_big();
     out_.move_to(pts[0]);
     for (std::size_t i = 1; i < pts.size(); ++i) {
       if (!(pts[i] == pts[i - 1])) out_.line_to(pts[i]);
@@ -324,9 +342,57 @@ class Outliner {
   std::vector<Point> dirs_;
   std::vector<double> lens_;
   std::vector<Point> left_, right_, contour_;
+  std::size_t emitted_ = 0;
 };
 
+bool segment_may_reach(Point a, Point b, const Rect& r) {
+  return std::max(a.x, b.x) >= r.x0 && std::min(a.x, b.x) <= r.x1 && std::max(a.y, b.y) >= r.y0 &&
+         std::min(a.y, b.y) <= r.y1;
+}
+
 }  // namespace
+
+void clip_pieces(const std::vector<StrokePolyline>& in, const Rect& reachable, std::vector<StrokePolyline>& out) {
+  for (const StrokePolyline& pl : in) {
+    const std::size_t n = pl.points.size();
+    if (n == 1) {
+      const Point p = pl.points[0];
+      if (segment_may_reach(p, p, reachable)) out.push_back(pl);
+      continue;
+    }
+    const std::size_t segs = pl.closed ? n : n - 1;
+    std::size_t first_hidden = segs;
+    for (std::size_t i = 0; i < segs && first_hidden == segs; ++i) {
+      if (!segment_may_reach(pl.points[i], pl.points[(i + 1) % n], reachable)) first_hidden = i;
+    }
+    if (first_hidden == segs) {  // all of it may show
+      out.push_back(pl);
+      continue;
+    }
+    // Runs of segments that may show become open pieces. A closed piece is walked from just after a hidden
+    // segment, so no run wraps around its start.
+    const std::size_t begin = pl.closed ? first_hidden + 1 : 0;
+    StrokePolyline run;
+    auto flush = [&] {
+      if (run.points.size() >= 2) out.push_back(std::move(run));
+      run = StrokePolyline{};
+    };
+    for (std::size_t k = 0; k < segs; ++k) {
+      const std::size_t i = (begin + k) % n, j = (i + 1) % n;
+      if (!segment_may_reach(pl.points[i], pl.points[j], reachable)) {
+        flush();
+        continue;
+      }
+      if (run.points.empty()) {
+        run.points.push_back(pl.points[i]);
+        run.corner.push_back(1);
+      }
+      run.points.push_back(pl.points[j]);
+      run.corner.push_back(pl.corner[j]);
+    }
+    flush();
+  }
+}
 
 namespace {
 
@@ -531,17 +597,37 @@ void stroke_polylines(const std::vector<StrokePolyline>& pieces, const StrokeSty
 }
 
 Path stroke_to_path(const Path& path, const StrokeStyle& style, double tolerance) {
+  return stroke_to_path_visible(path, style, tolerance, nullptr);
+}
+
+Path stroke_to_path_visible(const Path& path, const StrokeStyle& style, double tolerance, const Rect* visible) {
   Path out;
   if (!(style.width > 0) || !std::isfinite(style.width)) return out;
   if (!(tolerance > 0) || !std::isfinite(tolerance)) tolerance = kDefaultTolerance;
-  std::vector<StrokePolyline> pieces;
-  flatten_impl(path, tolerance / 2, nullptr, pieces);
   const std::vector<double> pattern =
       check_dashes(path, style.dashes) == DashVerdict::Dashed ? normalize_dashes(style.dashes) : std::vector<double>{};
+  // How far the outline reaches from the centre line: half the width, times the miter limit for miters, times
+  // sqrt(2) for square caps; plus the tolerance.
+  const double factor = std::max(std::sqrt(2.0), style.join == LineJoin::Miter && std::isfinite(style.miter_limit)
+                                                     ? style.miter_limit
+                                                     : 1.0);
+  Rect reachable{};
+  if (visible) {
+    const double reach = style.width / 2 * factor + tolerance;
+    reachable = Rect{visible->x0 - reach, visible->y0 - reach, visible->x1 + reach, visible->y1 + reach};
+  }
+  std::vector<StrokePolyline> pieces;
+  // Curves that cannot show become chords, except under dashes (a chord is shorter: later dashes would move).
+  flatten_impl(path, tolerance / 2, visible && pattern.empty() ? &reachable : nullptr, pieces);
   if (!pattern.empty()) {
     std::vector<StrokePolyline> dashed;
     dash_polylines(pieces, pattern, style.dash_offset, dashed);
     pieces.swap(dashed);
+  }
+  if (visible) {
+    std::vector<StrokePolyline> shown;
+    clip_pieces(pieces, reachable, shown);
+    pieces.swap(shown);
   }
   stroke_polylines(pieces, style, tolerance, out);
   return out;

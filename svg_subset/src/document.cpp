@@ -773,6 +773,7 @@ class Builder {
     const auto verbs = path.verbs();
     if (std::all_of(verbs.begin(), verbs.end(), [](Verb v) { return v == Verb::Move; })) return;  // nothing drawn
     const auto [source_line, source_column] = lines_.position(at);
+    warn_about_huge_coordinates(path, ctm, at);
     const std::optional<Color> fill = line ? std::nullopt : paint_color(style.fill, style.fill_opacity, style);
     const std::optional<Color> stroke =
         style.stroke_style.width > 0 ? paint_color(style.stroke, style.stroke_opacity, style) : std::nullopt;
@@ -801,6 +802,26 @@ class Builder {
       item.column = source_column;
       warn_about_dashes(item, at);
       doc_.items.push_back(std::move(item));
+    }
+  }
+
+  /// Device coordinates beyond kMaxPreciseCoordinate keep less than a pixel of precision in a double (their
+  /// spacing is 2^-3 px at 1e15 and grows with them), so clipping and outlining them may draw imprecisely.
+  void warn_about_huge_coordinates(const Path& path, const Affine& ctm, std::size_t at) {
+    constexpr double kMaxPreciseCoordinate = 1e15;
+    const Rect b = path.control_bounds();
+    double largest = 0;
+    for (const Point corner : {Point{b.x0, b.y0}, Point{b.x1, b.y0}, Point{b.x0, b.y1}, Point{b.x1, b.y1}}) {
+      const Point d = ctm.apply(corner);
+      largest = std::max({largest, std::fabs(d.x), std::fabs(d.y)});
+    }
+    if (largest > kMaxPreciseCoordinate) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.3g", largest);
+      warn("huge coordinates", at,
+           std::string("the shape reaches ") + text +
+               " device pixels (control points included), beyond 1e15 where a double keeps sub-pixel precision; "
+               "it may be drawn imprecisely");
     }
   }
 

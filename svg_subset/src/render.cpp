@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -84,7 +85,13 @@ void scale_to(Document& doc, int width, int height) {
 
 template <class T>
 void render(const Document& doc, BasicImage<T>& image, const RenderSettings& settings, Renderer& renderer) {
+  const std::uint64_t flattened_before = renderer.flattened_points();
   for (const DrawItem& item : doc.items) {
+    if (renderer.flattened_points() - flattened_before > kMaxDocumentFlattenedPoints) {
+      throw ParseError(doc.file, item.line, item.column,
+                       "the document needs more than " + std::to_string(kMaxDocumentFlattenedPoints) +
+                           " line segments in all (the limit per document); stopped at this element");
+    }
     try {
       if (item.is_fill()) {
         const FillOptions options{settings.rule_override.value_or(item.rule), settings.aa, settings.tolerance};

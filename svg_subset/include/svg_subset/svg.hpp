@@ -110,8 +110,12 @@ struct RenderSettings {
   std::optional<HairlineMode> hairline;
 };
 
+/// Most line segments the fills and strokes of one document may flatten to in all (2^25).
+inline constexpr std::uint64_t kMaxDocumentFlattenedPoints = std::uint64_t{1} << 25;
+
 /// Draws every item of `doc` onto `image` (which should be doc.width x doc.height) in order. A core limit
-/// reached by one item (vraster::Error) is rethrown as a ParseError at that item's element.
+/// reached by one item (vraster::Error) is rethrown as a ParseError at that item's element, and so is passing
+/// kMaxDocumentFlattenedPoints.
 template <class T>
 void render(const Document& doc, BasicImage<T>& image, const RenderSettings& settings, Renderer& renderer);
 
