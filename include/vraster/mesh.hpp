@@ -51,7 +51,8 @@ struct Mesh {
 
 /// How colour varies across a triangle (the seeds' shading frequencies).
 enum class Shading : std::uint8_t {
-  Flat,     ///< one colour per triangle: the mean vertex colour, lit once with the mean vertex normal
+  Flat,     ///< one colour per triangle: the mean vertex colour, lit once with the plane's normal (from the `eye`
+            ///< positions, turned to the vertex normals' side; the mean vertex normal when they are all equal)
   Gouraud,  ///< lit at each vertex, the colours interpolated with barycentric weights
   Phong,    ///< colour and normal interpolated, the normal renormalized and lit at every pixel
 };

@@ -42,6 +42,13 @@ struct Camera {
 /// Throws vraster::Error for a camera out of range.
 Mesh project(const MeshModel& model, const Camera& camera, int width, int height, Color color);
 
+/// A unit sphere of `rings` x `segments` quads (two triangles each; 2 <= rings, 3 <= segments, both <= 2048), with
+/// its exact normals; triangles run counterclockwise seen from outside.
+MeshModel make_sphere(int rings, int segments);
+/// A torus around the y axis: tube centre radius `major`, tube radius `minor` (0 < minor < major), `around` x `tube`
+/// quads (each 3 to 2048), exact normals, counterclockwise seen from outside.
+MeshModel make_torus(double major, double minor, int around, int tube);
+
 /// Reads Wavefront OBJ text: `v x y z [r g b]`, `vn`, `f` with `v`, `v/t`, `v//n` or `v/t/n` corners (polygons are
 /// fanned from their first corner; negative indices count back from the last vertex read); other statements are
 /// ignored. A corner's normal, when given, overrides the vertex normal. Throws vraster::Error

@@ -23,9 +23,12 @@ class Statement {
     std::size_t i = 0;
     while (i < line.size()) {
       while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
-      if (i >= line.size() || line[i] == '#') break;
+      if (i >= line.size()) break;
+      // A comment: '#' opening the line, or '#' standing alone ("# ..."); "#rrggbb" is a colour.
+      const bool alone = i + 1 >= line.size() || line[i + 1] == ' ' || line[i + 1] == '\t' || line[i + 1] == '\r';
+      if (line[i] == '#' && (tokens_.empty() || alone)) break;
       const std::size_t start = i;
-      while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r' && line[i] != '#') ++i;
+      while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
       tokens_.push_back(line.substr(start, i - start));
       columns_.push_back(static_cast<int>(start) + 1);
     }
@@ -34,7 +37,10 @@ class Statement {
   std::string_view operator[](std::size_t i) const { return tokens_[i]; }
 
   [[noreturn]] void fail(std::size_t token, const std::string& message) const {
-    const int column = token < columns_.size() ? columns_[token] : (columns_.empty() ? 1 : columns_.back());
+    // A missing value is reported just after the last one.
+    const int column = token < columns_.size() ? columns_[token]
+                       : columns_.empty()      ? 1
+                                               : columns_.back() + static_cast<int>(tokens_.back().size());
     throw Error(name_ + ":" + std::to_string(number_) + ":" + std::to_string(column) + ": " + message);
   }
   double number(std::size_t i) const {
@@ -280,6 +286,65 @@ Mesh project(const MeshModel& model, const Camera& camera, int width, int height
   }
   mesh.triangles = model.triangles;
   return mesh;
+}
+
+namespace {
+
+// Quads of a grid of (nu + 1) rows of nv vertices, closed around each row, into triangles, each turned so that it runs
+// counterclockwise around the outward normal.
+void add_grid(MeshModel& m, int nu, int nv) {
+  auto index = [&](int i, int j) { return static_cast<std::uint32_t>(i * nv + j % nv); };
+  auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    const Vec3 p = m.positions[a], q = m.positions[b], r = m.positions[c];
+    const double ux = q.x - p.x, uy = q.y - p.y, uz = q.z - p.z, vx = r.x - p.x, vy = r.y - p.y, vz = r.z - p.z;
+    const double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+    const Vec3 n = m.normals[a];
+    if (nx * n.x + ny * n.y + nz * n.z < 0) std::swap(b, c);
+    if (nx * nx + ny * ny + nz * nz > 0) m.triangles.push_back({a, b, c});  // the poles' zero-area halves: none
+  };
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      const std::uint32_t a = index(i, j), b = index(i + 1, j), c = index(i + 1, j + 1), d = index(i, j + 1);
+      add(a, b, c);
+      add(a, c, d);
+    }
+  }
+}
+
+}  // namespace
+
+MeshModel make_sphere(int rings, int segments) {
+  if (rings < 2 || segments < 3 || rings > 2048 || segments > 2048) throw Error("sphere: rings or segments out of range");
+  MeshModel m;
+  for (int i = 0; i <= rings; ++i) {
+    const double theta = M_PI * i / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double phi = 2 * M_PI * j / segments;
+      const Vec3 p = to_vec(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+      m.positions.push_back(p);
+      m.normals.push_back(p);
+    }
+  }
+  add_grid(m, rings, segments);
+  return m;
+}
+
+MeshModel make_torus(double major, double minor, int around, int tube) {
+  if (!(minor > 0 && minor < major) || around < 3 || tube < 3 || around > 2048 || tube > 2048) {
+    throw Error("torus: radii or counts out of range");
+  }
+  MeshModel m;
+  for (int i = 0; i <= around; ++i) {
+    const double u = 2 * M_PI * i / around;
+    for (int j = 0; j < tube; ++j) {
+      const double v = 2 * M_PI * j / tube;
+      const double ring = major + minor * std::cos(v);
+      m.positions.push_back(to_vec(ring * std::cos(u), minor * std::sin(v), ring * std::sin(u)));
+      m.normals.push_back(to_vec(std::cos(v) * std::cos(u), std::sin(v), std::cos(v) * std::sin(u)));
+    }
+  }
+  add_grid(m, around, tube);
+  return m;
 }
 
 MeshDocument parse_vmesh(std::string_view text, const std::string& name) {

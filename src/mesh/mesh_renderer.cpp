@@ -82,7 +82,21 @@ bool finite_vertex(const MeshVertex& v) {
 
 Vec3 mean(Vec3 a, Vec3 b, Vec3 c) { return Vec3{(a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3, (a.z + b.z + c.z) / 3}; }
 
-// Steps 2: false when the triangle draws nothing.
+// Flat shading's normal: the plane's, from the eye-space positions when they span a triangle, turned to the side of
+// the vertex normals; else the mean vertex normal.
+Vec3 face_normal(const MeshVertex& a, const MeshVertex& b, const MeshVertex& c) {
+  const Vec3 m = mean(a.normal, b.normal, c.normal);
+  const double ux = b.eye.x - a.eye.x, uy = b.eye.y - a.eye.y, uz = b.eye.z - a.eye.z;
+  const double vx = c.eye.x - a.eye.x, vy = c.eye.y - a.eye.y, vz = c.eye.z - a.eye.z;
+  double nx = uy * vz - uz * vy, ny = uz * vx - ux * vz, nz = ux * vy - uy * vx;
+  const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+  const double uu = ux * ux + uy * uy + uz * uz, vv = vx * vx + vy * vy + vz * vz;
+  if (!(len > 1e-9 * std::sqrt(uu * vv))) return m;  // no plane (2D meshes have all eye positions at 0)
+  if (nx * m.x + ny * m.y + nz * m.z < 0) nx = -nx, ny = -ny, nz = -nz;
+  return Vec3{static_cast<float>(nx / len), static_cast<float>(ny / len), static_cast<float>(nz / len)};
+}
+
+// Step 2: false when the triangle draws nothing.
 bool prepare(const Mesh& mesh, const std::array<std::uint32_t, 3>& tri, const MeshOptions& o, Point origin,
              Prepared& t) {
   const MeshVertex* v[3];
@@ -117,8 +131,7 @@ bool prepare(const Mesh& mesh, const std::array<std::uint32_t, 3>& tri, const Me
                     (v[0]->color.g + v[1]->color.g + v[2]->color.g) / 3,
                     (v[0]->color.b + v[1]->color.b + v[2]->color.b) / 3,
                     (v[0]->color.a + v[1]->color.a + v[2]->color.a) / 3};
-      const Color lit = shade(o.lighting, c, mean(v[0]->normal, v[1]->normal, v[2]->normal),
-                              mean(v[0]->eye, v[1]->eye, v[2]->eye));
+      const Color lit = shade(o.lighting, c, face_normal(*v[0], *v[1], *v[2]), mean(v[0]->eye, v[1]->eye, v[2]->eye));
       for (Color& out : t.color) out = lit;
       break;
     }
