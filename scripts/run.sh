@@ -11,6 +11,7 @@ case "$job" in
   *) echo "usage: scripts/run.sh demo|test" >&2; exit 2 ;;
 esac
 
+start=$SECONDS
 bash scripts/setup.sh
 jobs=$(nproc 2>/dev/null || echo 2)
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
@@ -20,5 +21,8 @@ if [[ $job == demo ]]; then
   mkdir -p out
   ./build/vraster demo -o out/vraster-demo.png
 else
-  ctest --test-dir build --output-on-failure -j"$jobs"
+  status=0
+  ctest --test-dir build --output-on-failure -j"$jobs" || status=$?
+  echo "run.sh test: setup, build and tests took $((SECONDS - start)) s (wall time)"
+  exit "$status"
 fi

@@ -11,6 +11,11 @@ packages=(
   libgtest-dev                         # tests
   libcairo2-dev                        # peer in benchmarks and cross-check tests only
   libharfbuzz-bin                      # hb-view / hb-shape, references for text tests
+  # Fonts the text tests use (found at their installed paths, see text/tests/text_support.hpp):
+  fonts-noto-core                      # Noto Serif (ligatures), Noto Sans Devanagari
+  fonts-hosny-amiri                    # Amiri (Arabic joining)
+  fonts-cantarell                      # Cantarell (OpenType with CFF outlines)
+  fonts-wqy-microhei                   # WenQuanYi Micro Hei (a .ttc collection of two faces)
 )
 
 # The fuzz targets need clang and its libFuzzer runtime.

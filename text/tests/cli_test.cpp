@@ -39,7 +39,7 @@ TEST(TextCli, WrapsAlignsAndUsesFallbackFonts) {
   const std::string out = out_dir() + "/cli_wrap.png";
   std::string log;
   ASSERT_EQ(run("'Wrapped text in a narrow box, centred' --width 120 --align center --features liga=0,kern --lang en "
-                "--font '" + shared_font("NotoSerif-Regular.ttf") + "' --aa none -o " + out, log),
+                "--font '" + system_font(kNotoSerif) + "' --aa none -o " + out, log),
             0)
       << log;
   const Image img = read_png(out);

@@ -17,9 +17,15 @@
 
 using namespace vraster;
 using namespace vraster::text;
+using vraster::text::testing::ink_of;
+using vraster::text::testing::ink_stats;
+using vraster::text::testing::InkStats;
 using vraster::text::testing::out_dir;
 using vraster::text::testing::repo_font;
-using vraster::text::testing::shared_font;
+using vraster::text::testing::system_font;
+using vraster::text::testing::kCantarellCff;
+using vraster::text::testing::kNotoSerif;
+using vraster::text::testing::kWqyMicroHeiCollection;
 
 namespace {
 
@@ -76,7 +82,7 @@ TEST(Font, DefaultFontIsEmbeddedNotoSansRegular) {
 }
 
 TEST(Font, FileAndMemoryLoadTheSameFace) {
-  const auto path = shared_font("NotoSerif-Regular.ttf");
+  const auto path = system_font(kNotoSerif);
   const auto a = Font::load_file(path);
   const auto b = Font::load_memory(read_bytes(path), 0, "serif");
   EXPECT_EQ(a->family_name(), "Noto Serif");
@@ -86,15 +92,15 @@ TEST(Font, FileAndMemoryLoadTheSameFace) {
 }
 
 TEST(Font, OpenTypeCffOutlinesLoad) {
-  const auto font = Font::load_file(shared_font("CFF-and-SBIX.otf"));
+  const auto font = Font::load_file(system_font(kCantarellCff));
   bool any = false;
   for (int g = 1; g < font->glyph_count() && !any; ++g) any = !font->outline_units(static_cast<std::uint32_t>(g)).empty();
   EXPECT_TRUE(any) << "no CFF glyph with an outline";
 }
 
 TEST(Font, CollectionFacesAreSelectedByIndex) {
-  const auto coll = make_collection(read_bytes(shared_font("NotoSans-Regular.ttf")),
-                                    read_bytes(shared_font("NotoSerif-Regular.ttf")));
+  const auto coll = make_collection(read_bytes(repo_font("NotoSans-Regular.ttf")),
+                                    read_bytes(system_font(kNotoSerif)));
   const std::string path = out_dir() + "/two.ttc";
   write_bytes(path, coll);
   const auto sans = Font::load_file(path, 0);
@@ -110,6 +116,19 @@ TEST(Font, CollectionFacesAreSelectedByIndex) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
   }
+}
+
+TEST(Font, InstalledCollectionFacesAreSelectedByIndex) {
+  // A real .ttc from Debian (WenQuanYi Micro Hei: a proportional and a monospaced face).
+  const auto path = system_font(kWqyMicroHeiCollection);
+  const auto first = Font::load_file(path, 0);
+  const auto second = Font::load_file(path, 1);
+  EXPECT_EQ(first->face_count(), 2);
+  EXPECT_EQ(second->face_count(), 2);
+  EXPECT_EQ(first->family_name(), "WenQuanYi Micro Hei");
+  EXPECT_EQ(second->family_name(), "WenQuanYi Micro Hei Mono");
+  EXPECT_NE(first->glyph_index(U'\u4E2D'), 0u);  // 中
+  EXPECT_THROW(Font::load_file(path, 2), Error);
 }
 
 TEST(Font, MissingFileErrorNamesTheFile) {
@@ -137,19 +156,42 @@ TEST(Font, CorruptFileErrorNamesTheFile) {
   EXPECT_THROW(Font::load_file(path), Error);
 }
 
-TEST(Font, TruncatedFontNeverCrashes) {
-  // The first 20% of a real font: the table directory points past the end. Loading may fail (with an Error) or
-  // succeed with glyphs that have no outline; nothing may crash.
-  auto bytes = read_bytes(shared_font("NotoSans-Regular.ttf"));
-  bytes.resize(bytes.size() / 5);
-  try {
-    const auto font = Font::load_memory(bytes, 0, "truncated");
-    for (char32_t c : std::u32string(U"Hello")) (void)font->outline_units(font->glyph_index(c));
-    const auto layout = layout_text("Hello", FontList(font), TextStyle{});
-    Image image(64, 32);
-    TextRenderer().draw(image, layout, Color{});
-  } catch (const Error&) {
+TEST(Font, TruncatedFontIsRejectedOrDrawsWithoutCrashing) {
+  // A real font cut short at several lengths: the table directory points past the end. Each either fails to load
+  // with a vraster::Error naming the font, or loads and then lays out and draws "Hello" (five glyphs, whatever
+  // their outlines), never anything else. The uncut font is the control: it loads and draws ink.
+  const auto original = read_bytes(repo_font("NotoSans-Regular.ttf"));
+  ASSERT_GT(original.size(), 10000u);
+  int rejected = 0;
+  for (const std::size_t length : {std::size_t{4}, std::size_t{12}, std::size_t{100}, original.size() / 5,
+                                   original.size() / 2, original.size() - 1, original.size()}) {
+    SCOPED_TRACE("length " + std::to_string(length));
+    std::vector<std::uint8_t> bytes(original.begin(), original.begin() + static_cast<std::ptrdiff_t>(length));
+    std::shared_ptr<Font> font;
+    try {
+      font = Font::load_memory(bytes, 0, "truncated.ttf");
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("truncated.ttf"), std::string::npos) << e.what();
+      ++rejected;
+      continue;
+    }
+    Image image(96, 40);
+    TextStyle style;
+    style.size = 20;
+    try {
+      const auto layout = layout_text("Hello", FontList(font), style, LayoutOptions{}, {4, 28});
+      EXPECT_EQ(layout.glyphs.size(), 5u);
+      TextRenderer().draw(image, layout, Color{});
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("truncated.ttf"), std::string::npos) << e.what();
+      continue;
+    }
+    if (length == original.size()) {
+      const InkStats s = ink_stats(ink_of(image, false), image.width, image.height);
+      EXPECT_GT(s.total, 50) << "the whole font draws no ink";
+    }
   }
+  EXPECT_GE(rejected, 3) << "a font cut to 4, 12 or 100 bytes has no complete table directory";
 }
 
 TEST(Font, BadSizesAreRejectedWithAMessage) {
@@ -223,7 +265,7 @@ TEST(Font, MetricsScaleWithSize) {
 TEST(Font, MutatedFontsNeverCrash) {
   // Seeded random byte changes in a real font (a small fuzz run): loading may fail with an Error; whatever loads
   // must shape, lay out and draw without crashing, and with bounded memory.
-  const auto original = read_bytes(shared_font("NotoSans-Regular.ttf"));
+  const auto original = read_bytes(repo_font("NotoSans-Regular.ttf"));
   std::uint64_t state = 12345;
   auto next = [&] {
     state = state * 6364136223846793005ull + 1442695040888963407ull;

@@ -191,7 +191,7 @@ TEST(Layout, TabsAndControlCharactersDrawNoBoxes) {
 }
 
 TEST(Layout, WrappedRightToLeftParagraphReadsFromTheRight) {
-  FontList fonts(Font::load_file(shared_font("Amiri-Regular.ttf")));
+  FontList fonts(Font::load_file(system_font(kAmiri)));
   // Six Arabic words; each line must hold its logically first word at the right end.
   const std::string word = "\xd9\x83\xd9\x84\xd9\x85\xd8\xa9";  // كلمة
   std::string text;

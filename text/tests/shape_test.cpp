@@ -51,7 +51,7 @@ std::vector<HbGlyph> hb_shape(const std::string& font, const std::string& text, 
 
 void expect_same_as_hb_shape(const std::string& font_path, const std::string& text, const std::string& lang,
                              const std::string& features = "") {
-  if (!have_program("hb-shape")) GTEST_SKIP() << "hb-shape is not installed";
+  require_program("hb-shape", "libharfbuzz-bin");
   const auto font = Font::load_file(font_path);
   TextStyle style;
   style.size = font->units_per_em();  // positions come out in font units, as hb-shape prints them
@@ -83,17 +83,17 @@ TEST(ShapeVsHbShape, LatinWithKerning) {
 
 TEST(ShapeVsHbShape, LatinWithLigaturesAndKerning) {
   // Noto Sans has no default f-ligatures; Noto Serif has fi, ffi, ff.
-  expect_same_as_hb_shape(shared_font("NotoSerif-Regular.ttf"), "AVAWA Tofu office, fluffy affinity", "en");
+  expect_same_as_hb_shape(system_font(kNotoSerif), "AVAWA Tofu office, fluffy affinity", "en");
 }
 
 TEST(ShapeVsHbShape, LatinWithFeaturesOff) {
   expect_same_as_hb_shape(repo_font("NotoSans-Regular.ttf"), "AVAWA office fluffy", "en", "liga=0,kern=0");
 }
 
-TEST(ShapeVsHbShape, ArabicJoining) { expect_same_as_hb_shape(shared_font("Amiri-Regular.ttf"), kArabic, "ar"); }
+TEST(ShapeVsHbShape, ArabicJoining) { expect_same_as_hb_shape(system_font(kAmiri), kArabic, "ar"); }
 
 TEST(ShapeVsHbShape, DevanagariReordering) {
-  expect_same_as_hb_shape(shared_font("NotoSansDevanagari-Regular.ttf"), kDevanagari, "hi");
+  expect_same_as_hb_shape(system_font(kNotoSansDevanagari), kDevanagari, "hi");
 }
 
 TEST(Shape, KerningPullsAVTogetherAndCanBeTurnedOff) {
@@ -111,7 +111,7 @@ TEST(Shape, KerningPullsAVTogetherAndCanBeTurnedOff) {
 }
 
 TEST(Shape, LigaturesFormAndCanBeTurnedOff) {
-  const auto font = Font::load_file(shared_font("NotoSerif-Regular.ttf"));
+  const auto font = Font::load_file(system_font(kNotoSerif));
   TextStyle style;
   const auto lig = shape_text(U"fi", FontList(font), style);
   EXPECT_EQ(lig.size(), 1u);
@@ -130,7 +130,7 @@ TEST(Shape, InvalidFeatureListIsAnError) {
 }
 
 TEST(Shape, ArabicLettersTakeJoiningFormsInVisualOrder) {
-  const auto font = Font::load_file(shared_font("Amiri-Regular.ttf"));
+  const auto font = Font::load_file(system_font(kAmiri));
   const auto glyphs = shape_text(U"\u0628\u0628\u0628", FontList(font), TextStyle{});  // three beh
   ASSERT_EQ(glyphs.size(), 3u);
   const auto isolated = font->glyph_index(U'\u0628');
@@ -142,7 +142,7 @@ TEST(Shape, ArabicLettersTakeJoiningFormsInVisualOrder) {
 }
 
 TEST(Shape, DevanagariVowelSignIMovesBeforeItsConsonant) {
-  const auto font = Font::load_file(shared_font("NotoSansDevanagari-Regular.ttf"));
+  const auto font = Font::load_file(system_font(kNotoSansDevanagari));
   const auto glyphs = shape_text(U"\u0915\u093F", FontList(font), TextStyle{});  // KA + vowel sign I
   ASSERT_EQ(glyphs.size(), 2u);
   EXPECT_EQ(glyphs[1].glyph, font->glyph_index(U'\u0915'));  // the consonant is drawn second (right)
@@ -151,7 +151,7 @@ TEST(Shape, DevanagariVowelSignIMovesBeforeItsConsonant) {
 
 TEST(Shape, MixedDirectionLineIsReorderedByRuns) {
   FontList fonts = FontList::default_list();
-  fonts.add(Font::load_file(shared_font("Amiri-Regular.ttf")));
+  fonts.add(Font::load_file(system_font(kAmiri)));
   const std::u32string text = U"abc \u0645\u0631\u062D\u0628\u0627 def";  // abc مرحبا def
   const auto glyphs = shape_text(text, fonts, TextStyle{});
   std::vector<std::uint32_t> clusters;
@@ -174,7 +174,7 @@ TEST(Shape, MixedDirectionLineIsReorderedByRuns) {
 
 TEST(Shape, RightToLeftParagraphPutsLatinRunOnTheLeftOfArabic) {
   FontList fonts = FontList::default_list();
-  fonts.add(Font::load_file(shared_font("Amiri-Regular.ttf")));
+  fonts.add(Font::load_file(system_font(kAmiri)));
   const std::string text = "\xd9\x85\xd8\xb1\xd8\xad\xd8\xa8\xd8\xa7 abc";  // مرحبا abc: Arabic first, logically
   TextStyle style;
   style.direction = Direction::Auto;  // first strong character is Arabic: RTL paragraph
@@ -196,8 +196,8 @@ TEST(Shape, RightToLeftParagraphPutsLatinRunOnTheLeftOfArabic) {
 
 TEST(Shape, FallbackFontsCoverWhatTheFirstLacks) {
   FontList fonts = FontList::default_list();
-  fonts.add(Font::load_file(shared_font("Amiri-Regular.ttf")));
-  fonts.add(Font::load_file(shared_font("NotoSansDevanagari-Regular.ttf")));
+  fonts.add(Font::load_file(system_font(kAmiri)));
+  fonts.add(Font::load_file(system_font(kNotoSansDevanagari)));
   ASSERT_FALSE(fonts.fonts[0]->has_glyph(U'\u0628'));
   const auto glyphs = shape_text(U"A\u0628 \u0915", fonts, TextStyle{});
   ASSERT_EQ(glyphs.size(), 4u);
@@ -209,7 +209,7 @@ TEST(Shape, FallbackFontsCoverWhatTheFirstLacks) {
 
 TEST(Shape, CharactersNoFontHasBecomeNotdef) {
   FontList fonts = FontList::default_list();
-  fonts.add(Font::load_file(shared_font("Amiri-Regular.ttf")));
+  fonts.add(Font::load_file(system_font(kAmiri)));
   const auto glyphs = shape_text(U"A\U0010FFFDB", fonts, TextStyle{});
   ASSERT_EQ(glyphs.size(), 3u);
   EXPECT_EQ(glyphs[1].glyph, 0u);

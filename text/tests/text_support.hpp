@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -10,9 +11,39 @@
 
 namespace vraster::text::testing {
 
-inline std::string shared_font(const std::string& file) {
-  return std::string(VRASTER_SOURCE_DIR) + "/../shared/conformance/fonts/" + file;
+/// A font file a Debian package installs (scripts/setup.sh installs every package named here).
+struct SystemFont {
+  const char* path;     ///< where the package installs it (`dpkg -L PACKAGE`)
+  const char* package;  ///< the Debian package
+};
+
+// The tests' fonts beyond the embedded default (text/fonts/NotoSans-Regular.ttf): none comes from ../shared, so a
+// bare clone passes its tests on a machine set up by scripts/setup.sh.
+inline constexpr SystemFont kNotoSerif{"/usr/share/fonts/truetype/noto/NotoSerif-Regular.ttf", "fonts-noto-core"};
+inline constexpr SystemFont kNotoSansDevanagari{"/usr/share/fonts/truetype/noto/NotoSansDevanagari-Regular.ttf",
+                                                "fonts-noto-core"};
+inline constexpr SystemFont kAmiri{"/usr/share/fonts/opentype/fonts-hosny-amiri/Amiri-Regular.ttf",
+                                   "fonts-hosny-amiri"};
+inline constexpr SystemFont kCantarellCff{"/usr/share/fonts/opentype/cantarell/Cantarell-Regular.otf",
+                                          "fonts-cantarell"};  // OpenType with CFF outlines
+inline constexpr SystemFont kWqyMicroHeiCollection{"/usr/share/fonts/truetype/wqy/wqy-microhei.ttc",
+                                                   "fonts-wqy-microhei"};  // a TrueType collection of two faces
+
+/// A test resource that is not there: the test fails with this message (never a crash, never a silent skip).
+struct MissingResource : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// The path of `font`; throws MissingResource, naming the file and its package, when it is not installed.
+inline std::string system_font(const SystemFont& font) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(font.path, ec)) {
+    throw MissingResource(std::string("test font ") + font.path + " is missing: install the Debian package " +
+                          font.package + " (bash scripts/setup.sh installs it)");
+  }
+  return font.path;
 }
+
 inline std::string repo_font(const std::string& file) { return std::string(VRASTER_SOURCE_DIR) + "/text/fonts/" + file; }
 
 inline std::string out_dir() {
@@ -40,6 +71,14 @@ inline bool have_program(const std::string& name) {
   int status = 0;
   run_command("command -v " + name + " >/dev/null 2>&1", status);
   return status == 0;
+}
+
+/// Throws MissingResource, naming the program and its Debian package, unless `name` is on the PATH.
+inline void require_program(const std::string& name, const std::string& package) {
+  if (!have_program(name)) {
+    throw MissingResource("reference program " + name + " is missing: install the Debian package " + package +
+                          " (bash scripts/setup.sh installs it)");
+  }
 }
 
 /// Ink per pixel in [0, 1]: alpha for images on transparent, darkness for black-on-white images.
