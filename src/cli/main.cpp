@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli/cli.hpp"
+#include "cli/image_compare.hpp"
 #include "svg_subset/svg.hpp"
 #include "vraster/fxaa.hpp"
 #include "vraster/vraster.hpp"
@@ -26,8 +27,8 @@ namespace {
 
 constexpr const char* kUsage =
     "usage:\n"
-    "  vraster render IN.svg -o OUT.png [--aa MODE] [--rule RULE] [--tolerance T]\n"
-    "                 [--depth 8|16] [--background COLOR|transparent] [--bench N]\n"
+    "  vraster render IN.svg -o OUT.png [-w|--width W] [-h|--height H] [--quiet] [--aa MODE] [--rule RULE]\n"
+    "                 [--tolerance T] [--depth 8|16] [--background COLOR|transparent] [--bench N]\n"
     "                 [--hairline bresenham|dda|wu|analytic]   (every stroke as a 1-px hairline)\n"
     "  vraster fill-rules IN.svg -o SHEET.png [--winding] [--aa MODE] [--panel PX]\n"
     "  vraster text \"TEXT\" -o OUT.png [--font FILE]... [--face-index N] [--size PX] [--width W]\n"
@@ -35,6 +36,7 @@ constexpr const char* kUsage =
     "               [--features F] [--lang L] [--script S] [--dir auto|ltr|rtl] [--hinting none|light]\n"
     "               [--margin PX]\n"
     "  vraster accuracy [SCENE.svg...] -o DIR [--frames N] [--max-side PX]   (AA methods: time vs error)\n"
+    "  vraster compare REFERENCE.png OURS.png [--diff DIFF.png]   (the conformance pass rule)\n"
     "  vraster demo [-o FILE]\n"
     "MODE: none | analytic | exact | ssaa-2|4|8|16 | msaa-4|8|16 | fxaa\n"
     "RULE: evenodd | nonzero | nonexterior | positive | negative | abs-geq-2 (overrides the file's fill-rule)\n";
@@ -46,6 +48,9 @@ struct RenderArgs {
   int depth = 8;
   Color background = Color::transparent();
   int bench_frames = 0;
+  int width = 0, height = 0;  ///< requested output size (0: from the document)
+  bool quiet = false;         ///< no warnings on stderr
+  bool help = false;
 };
 
 double parse_number(std::string_view flag, std::string_view text) {
@@ -79,6 +84,18 @@ RenderArgs parse_render_args(int argc, char** argv) {
     const std::string_view arg = r.next();
     if (arg == "-o" || arg == "--output") {
       a.output = r.value(arg);
+    } else if (arg == "--help") {
+      a.help = true;
+      return a;
+    } else if (arg == "-w" || arg == "--width" || arg == "-h" || arg == "--height") {
+      const double n = parse_number(arg, r.value(arg));
+      if (!(n >= 1 && n <= kMaxImageSide) || n != std::floor(n)) {
+        throw UsageError{std::string(arg) + " needs a whole number of pixels from 1 to " +
+                         std::to_string(kMaxImageSide)};
+      }
+      (arg == "-w" || arg == "--width" ? a.width : a.height) = static_cast<int>(n);
+    } else if (arg == "--quiet") {
+      a.quiet = true;
     } else if (arg == "--aa") {
       const auto v = r.value(arg);
       if (!parse_anti_alias(v, a.settings.aa)) throw UsageError{"--aa: unknown mode '" + std::string(v) + "'"};
@@ -159,8 +176,18 @@ void render_document(const svg::Document& doc, const RenderArgs& a) {
 
 int run_render(int argc, char** argv) {
   const RenderArgs a = parse_render_args(argc, argv);
-  const svg::Document doc = svg::load_svg(a.input);
-  for (const std::string& w : doc.warnings) std::cerr << a.input << ":" << w << "\n";
+  if (a.help) {
+    std::cout << kUsage;
+    return 0;
+  }
+  svg::Document doc = svg::load_svg(a.input);
+  if (!a.quiet) {
+    for (const std::string& w : doc.warnings) std::cerr << a.input << ":" << w << "\n";
+  }
+  if (a.width > 0 || a.height > 0) {
+    const auto [w, h] = svg::output_size(doc, a.width, a.height);
+    svg::scale_to(doc, w, h);
+  }
   if (a.depth == 16) {
     render_document<std::uint16_t>(doc, a);
   } else {
@@ -200,6 +227,7 @@ int main(int argc, char** argv) {
     const std::string_view command = argv[1];
     if (command == "render") return cli::run_render(argc, argv);
     if (command == "demo") return cli::run_demo(argc, argv);
+    if (command == "compare") return cli::run_compare(argc, argv);
     if (command == "fill-rules") return cli::run_fill_rules(argc, argv);
     if (command == "accuracy") return cli::run_accuracy(argc, argv);
 #if VRASTER_WITH_TEXT

@@ -595,6 +595,8 @@ class Builder {
         offset = value_offset(root.attribute("height"));
       fail(offset, e.what());
     }
+    doc_.intrinsic_width = *width;
+    doc_.intrinsic_height = *height;
     doc_.width = static_cast<int>(pixels_w);
     doc_.height = static_cast<int>(pixels_h);
     percent_width_ = vb ? vb->width : *width;

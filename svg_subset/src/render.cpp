@@ -1,4 +1,5 @@
 // svg_subset: drawing a parsed Document with vraster.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
@@ -54,6 +55,32 @@ void draw_hairline(BasicImage<T>& image, const DrawItem& item, HairlineMode mode
 }
 
 }  // namespace
+
+std::pair<int, int> output_size(const Document& doc, int width, int height) {
+  if (width > 0 && height > 0) return {width, height};
+  if (width <= 0 && height <= 0) return {doc.width, doc.height};
+  // Single precision, as resvg computes it (the reference images were made that way).
+  const float w = std::max(1.0f, std::round(static_cast<float>(doc.intrinsic_width)));
+  const float h = std::max(1.0f, std::round(static_cast<float>(doc.intrinsic_height)));
+  const double other = std::max(1.0f, width > 0 ? std::ceil(static_cast<float>(width) * h / w)
+                                                : std::ceil(static_cast<float>(height) * w / h));
+  if (width > 0) {
+    check_image_size(width, other);  // before the cast: the other side can be out of int's range
+    return {width, static_cast<int>(other)};
+  }
+  check_image_size(other, height);
+  return {static_cast<int>(other), height};
+}
+
+void scale_to(Document& doc, int width, int height) {
+  check_image_size(width, height);
+  const Affine scale = Affine::scale(width / doc.intrinsic_width, height / doc.intrinsic_height);
+  for (DrawItem& item : doc.items) item.transform = scale * item.transform;
+  doc.width = width;
+  doc.height = height;
+  doc.intrinsic_width = width;
+  doc.intrinsic_height = height;
+}
 
 template <class T>
 void render(const Document& doc, BasicImage<T>& image, const RenderSettings& settings, Renderer& renderer) {
