@@ -1,7 +1,7 @@
 // vraster fill-rules: the same drawing under every fill rule, side by side, optionally tinted by winding number.
 //
 //   1. read the SVG (svg_subset), scale it to a panel
-//   2. per rule: render every item with that rule into a panel image
+//   2. per rule: render every item with that rule into a panel image (--aa fxaa: then the FXAA post-filter)
 //   3. with --winding: tint each pixel by the winding number at its centre, and add a legend
 //   4. paste the panels into one sheet with labels drawn in the built-in bitmap font
 #include <algorithm>
