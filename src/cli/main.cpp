@@ -17,6 +17,7 @@
 #include "cli/image_compare.hpp"
 #include "svg_subset/svg.hpp"
 #include "vraster/fxaa.hpp"
+#include "vraster/files.hpp"
 #include "vraster/vraster.hpp"
 #if VRASTER_WITH_TEXT
 #include "vraster_text/cli.hpp"
@@ -227,6 +228,7 @@ int run_demo(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   using namespace vraster;
+  install_output_cleanup_handlers();  // a signal or timeout while writing leaves no partial file
   try {
     if (argc < 2) throw cli::UsageError{"no command given"};
     const std::string_view command = argv[1];
