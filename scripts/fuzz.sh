@@ -66,7 +66,7 @@ for t in "${wanted[@]}"; do
   ./build-fuzz/tests/fuzz/fuzz_$target "$work" -max_total_time="$seconds" -max_len="$max_len" -timeout=10 \
     -rss_limit_mb=2048 -artifact_prefix="build-fuzz/crash-$target-" -print_final_stats=1 >"$work.log" 2>&1 ||
     status=$?
-  grep -E '^(stat::number_of_executed_units|stat::peak_rss_mb|#[0-9]+ *DONE)' "$work.log" | tr '\n' ' '
+  grep -E '^(stat::number_of_executed_units|stat::peak_rss_mb|#[0-9]+[[:space:]]+DONE)' "$work.log" | tr '\n' ' '
   echo
   if ((status != 0)); then
     tail -n 40 "$work.log"
