@@ -193,7 +193,8 @@ void Canvas::set_composite(CompositeOp op) {
 }
 void Canvas::set_fill_rule(FillRule rule) { impl_->state.rule = rule; }
 void Canvas::set_anti_alias(AntiAlias aa) {
-  if (aa != AntiAlias::Fxaa) impl_->state.aa = aa;
+  // Every value is a coverage mode (FXAA is a post-filter: apply_fxaa()); out-of-range values are ignored.
+  if (static_cast<int>(aa) <= static_cast<int>(AntiAlias::Msaa16)) impl_->state.aa = aa;
 }
 void Canvas::set_tolerance(double device_pixels) {
   if (std::isfinite(device_pixels) && device_pixels > 0) impl_->state.tolerance = device_pixels;
