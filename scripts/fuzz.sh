@@ -8,8 +8,8 @@ seconds=${1:-30}
 bash scripts/setup.sh --fuzz
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVRASTER_FUZZ=ON \
   -DVRASTER_SANITIZE=ON -DVRASTER_BUILD_TESTS=OFF -DVRASTER_BUILD_TEXT=OFF >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target fuzz_path_data fuzz_raster
-for target in path_data raster; do
+cmake --build build-fuzz -j"$(nproc)" --target fuzz_path_data fuzz_raster fuzz_canvas
+for target in path_data raster canvas; do
   work=$(mktemp -d)
   cp -r "tests/fuzz/corpus/$target/." "$work/"
   echo "fuzz_$target: ${seconds}s"

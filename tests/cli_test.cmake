@@ -159,7 +159,7 @@ expect_png("--bench 2 with -o" "${WORK}/bench.png" 8 6 8)
 # --- demo ---
 run_vraster(demo -o demo-out.png)
 expect_status("demo" 0)
-expect_png("demo" "${WORK}/demo-out.png" 640 400 8)
+expect_png("demo" "${WORK}/demo-out.png" 640 620 8)
 
 if(FAILURES)
   list(LENGTH FAILURES n)
