@@ -7,6 +7,9 @@
 #include <string.h>
 
 #include "vraster/vraster.h"
+#if VRASTER_WITH_TEXT
+#include "vraster_text/vraster_text.h"
+#endif
 
 static int failures = 0;
 static int checks = 0;
@@ -406,6 +409,78 @@ static void test_paints_and_images(void) {
   vr_canvas_destroy(c);
 }
 
+
+#if VRASTER_WITH_TEXT
+static long ink(const vr_image* img) {
+  long sum = 0;
+  int x, y;
+  for (y = 0; y < vr_image_height(img); ++y)
+    for (x = 0; x < vr_image_width(img); ++x) sum += px(img, x, y, 3);
+  return sum;
+}
+
+static void test_text(void) {
+  vr_image* img;
+  vr_canvas* c = fresh(160, 48, &img);
+  vr_text_metrics left, centre, top, big;
+  const char garbage[16] = "not a font file";
+  vr_font* file = vr_font_load(VRASTER_SOURCE_DIR "/text/fonts/NotoSans-Regular.ttf");
+  vr_font* def = vr_font_load_default();
+  CHECK(file != NULL && def != NULL);
+  CHECK(vr_font_load("no_such_font.ttf") == NULL);
+  CHECK(error_mentions("no_such_font.ttf"));
+  CHECK(vr_font_load_memory(garbage, sizeof garbage) == NULL);
+  CHECK(vr_font_load(NULL) == NULL);
+
+  CHECK(vr_canvas_set_font(c, file, 0) == -1);
+  CHECK(vr_canvas_set_font(c, file, 5000) == -1);
+  CHECK(vr_canvas_set_font(c, file, NAN) == -1);
+  CHECK(vr_canvas_set_font(NULL, file, 10) == -1);
+  CHECK(vr_canvas_set_text_align(c, (vr_text_align)9) == -1);
+  CHECK(vr_canvas_set_text_baseline(c, (vr_text_baseline)-2) == -1);
+  CHECK(vr_canvas_set_font_features(c, "+++") == -1);
+  CHECK(vr_canvas_fill_text(c, NULL, 0, 0) == -1);
+  CHECK(vr_canvas_measure_text(c, "x", NULL) == -1);
+
+  /* Alignment and baseline move the anchor: centre is half the advance left of start, top puts the anchor on
+   * the ascender line. */
+  CHECK(vr_canvas_set_font(c, file, 20) == 0);
+  vr_font_destroy(file); /* the canvas keeps the font it uses */
+  CHECK(vr_canvas_measure_text(c, "Hello", &left) == 0);
+  CHECK(left.width > 20 && left.width < 100);
+  CHECK(left.actual_ascent > 10 && left.actual_ascent < 20); /* "H" and "l" reach about 0.7 em up */
+  CHECK(vr_canvas_set_text_align(c, VR_ALIGN_CENTER) == 0);
+  CHECK(vr_canvas_measure_text(c, "Hello", &centre) == 0);
+  CHECK(fabs(centre.actual_left - (left.actual_left + left.width / 2)) < 1e-9);
+  CHECK(vr_canvas_set_text_baseline(c, VR_BASELINE_TOP) == 0);
+  CHECK(vr_canvas_measure_text(c, "Hello", &top) == 0);
+  CHECK(fabs(top.font_ascent) < 1e-9);
+
+  /* The text state is saved and restored with the canvas state. */
+  CHECK(vr_canvas_save(c) == 0);
+  CHECK(vr_canvas_set_font(c, def, 40) == 0);
+  CHECK(vr_canvas_measure_text(c, "Hello", &big) == 0);
+  CHECK(fabs(big.width - 2 * left.width) < 1e-6); /* the same font (the embedded one) at twice the size */
+  CHECK(vr_canvas_restore(c) == 0);
+  CHECK(vr_canvas_measure_text(c, "Hello", &big) == 0);
+  CHECK(big.width == left.width && fabs(big.font_ascent) < 1e-9);
+
+  /* Drawing: bad numbers draw nothing; a real call draws ink in the fill colour, inside its box. */
+  vr_canvas_set_fill_rgba(c, 0, 0, 1, 1);
+  CHECK(vr_canvas_fill_text(c, "Hello", NAN, 10) == 0);
+  CHECK(vr_canvas_fill_text(c, "Hello", 80, INFINITY) == 0);
+  CHECK(ink(img) == 0);
+  CHECK(vr_canvas_fill_text(c, "Hello", 80, 10) == 0);
+  CHECK(ink(img) > 255 * 40);
+  CHECK(px(img, 80 - (int)(left.width / 2) - 2, 20, 3) == 0); /* left of the centred text */
+  CHECK(px(img, 80, 8, 3) == 0);                              /* above the top baseline */
+  CHECK(vr_canvas_stroke_text(c, "Hello", 80, 30) == 0);
+  vr_font_destroy(def);
+  vr_canvas_destroy(c);
+  vr_image_destroy(img);
+}
+#endif
+
 int main(int argc, char** argv) {
   const char* work = argc > 1 ? argv[1] : ".";
   test_images(work);
@@ -414,6 +489,9 @@ int main(int argc, char** argv) {
   test_state_clip_transform();
   test_composite_and_layers();
   test_paints_and_images();
+#if VRASTER_WITH_TEXT
+  test_text();
+#endif
   printf("c_api_test: %d checks, %d failed\n", checks, failures);
   return failures == 0 ? 0 : 1;
 }
