@@ -1,0 +1,153 @@
+// The compositor: coverage spans and rows -> shaded paint -> operator -> clip -> an ImageView.
+//
+// Where each "only what a draw call needs" decision is taken (docs/design.md):
+//   set():   invisible paint or zero global alpha with a bounded operator -> draws_nothing(), every call returns;
+//            the paint is prepared once (solid colour premultiplied, gradient tables, inverse transforms).
+//   span():  solid source-over at full coverage with an opaque colour -> a plain store, no read of the target;
+//            constant colours are never shaded into a buffer (the run loop reads one colour);
+//   run loop (blend.hpp): bounded operators skip pixels with zero coverage, clip or source alpha.
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include "blend.hpp"
+#include "shade.hpp"
+#include "vraster/composite.hpp"
+
+namespace vraster {
+namespace detail {
+
+template <class T>
+CompositeRunFn<T> composite_run_for(CompositeOp op) {
+  switch (op) {
+#define VRASTER_OP(name) \
+  case CompositeOp::name: return &composite_run<T, CompositeOp::name>;
+    VRASTER_OP(SourceOver) VRASTER_OP(Copy) VRASTER_OP(SourceIn) VRASTER_OP(SourceOut) VRASTER_OP(SourceAtop)
+    VRASTER_OP(DestinationOver) VRASTER_OP(DestinationIn) VRASTER_OP(DestinationOut) VRASTER_OP(DestinationAtop)
+    VRASTER_OP(Xor) VRASTER_OP(Lighter) VRASTER_OP(Clear)
+    VRASTER_OP(Multiply) VRASTER_OP(Screen) VRASTER_OP(Overlay) VRASTER_OP(Darken) VRASTER_OP(Lighten)
+    VRASTER_OP(ColorDodge) VRASTER_OP(ColorBurn) VRASTER_OP(HardLight) VRASTER_OP(SoftLight)
+    VRASTER_OP(Difference) VRASTER_OP(Exclusion) VRASTER_OP(Hue) VRASTER_OP(Saturation) VRASTER_OP(Color)
+    VRASTER_OP(Luminosity)
+#undef VRASTER_OP
+  }
+  return &composite_run<T, CompositeOp::SourceOver>;
+}
+
+template CompositeRunFn<std::uint8_t> composite_run_for<std::uint8_t>(CompositeOp);
+template CompositeRunFn<std::uint16_t> composite_run_for<std::uint16_t>(CompositeOp);
+
+}  // namespace detail
+
+template <class T>
+void blend_row(CompositeOp op, T* dst, const T* src, const float* coverage, const float* clip, int count) {
+  if (count <= 0) return;
+  detail::composite_run_for<T>(op)(dst, src, 4, coverage, 1.f, clip, count);
+}
+
+template void blend_row<std::uint8_t>(CompositeOp, std::uint8_t*, const std::uint8_t*, const float*, const float*, int);
+template void blend_row<std::uint16_t>(CompositeOp, std::uint16_t*, const std::uint16_t*, const float*, const float*,
+                                       int);
+
+template <class T>
+struct Compositor<T>::State {
+  ImageView<T> view;
+  CompositeOp op = CompositeOp::SourceOver;
+  float alpha = 1;
+  bool nothing = true;
+  bool solid_over = false;  // constant colour, source-over: the store fast path applies
+  detail::Shader<T> shader;
+  detail::CompositeRunFn<T> run = nullptr;
+  std::vector<T> src;  // one shaded row, grown as needed, kept across draw calls
+
+  // Clips [x0, x1) of row y to the view; false when nothing is left. `skip` is how many pixels were cut on the left.
+  bool clip_to_view(int y, int& x0, int& x1, int& skip) const {
+    if (y < view.y0 || y >= view.y0 + view.height) return false;
+    const int lo = std::max(x0, view.x0), hi = std::min(x1, view.x0 + view.width);
+    if (lo >= hi) return false;
+    skip = lo - x0;
+    x0 = lo;
+    x1 = hi;
+    return true;
+  }
+
+  const T* shade(int y, int x0, int n) {
+    if (shader.is_constant()) return shader.color();
+    if (src.size() < static_cast<std::size_t>(n) * 4) src.resize(static_cast<std::size_t>(n) * 4);
+    shader.shade(y, x0, n, src.data());
+    return src.data();
+  }
+};
+
+template <class T>
+Compositor<T>::Compositor() : state_(std::make_unique<State>()) {}
+template <class T>
+Compositor<T>::~Compositor() = default;
+template <class T>
+Compositor<T>::Compositor(Compositor&&) noexcept = default;
+template <class T>
+Compositor<T>& Compositor<T>::operator=(Compositor&&) noexcept = default;
+
+template <class T>
+void Compositor<T>::set(ImageView<T> target, const Paint& paint, const Affine& user_to_device, CompositeOp op,
+                        float global_alpha) {
+  State& s = *state_;
+  s.view = target;
+  s.op = op;
+  s.alpha = std::isfinite(global_alpha) ? std::clamp(global_alpha, 0.f, 1.f) : 0.f;
+  // An invisible paint leaves the shader a transparent constant: unbounded operators still clear with it.
+  const bool visible = s.shader.prepare(paint, user_to_device);
+  const bool empty_view = target.pixels == nullptr || target.width <= 0 || target.height <= 0;
+  s.nothing = empty_view || (is_bounded(op) && (!visible || s.alpha <= 0));
+  s.solid_over = op == CompositeOp::SourceOver && s.shader.is_constant();
+  s.run = detail::composite_run_for<T>(op);
+}
+
+template <class T>
+bool Compositor<T>::draws_nothing() const {
+  return state_->nothing;
+}
+
+template <class T>
+void Compositor<T>::span(int y, int x0, int x1, float coverage) {
+  State& s = *state_;
+  int skip = 0;
+  if (s.nothing || !s.clip_to_view(y, x0, x1, skip)) return;
+  const int n = x1 - x0;
+  T* dst = s.view.pixel(x0, y);
+  if (s.solid_over && s.shader.is_opaque() && coverage >= 1 && s.alpha >= 1) {
+    const T* c = s.shader.color();
+    if constexpr (sizeof(T) == 1) {
+      std::uint32_t packed;
+      std::memcpy(&packed, c, 4);
+      auto* px = reinterpret_cast<std::uint32_t*>(static_cast<void*>(dst));
+      std::fill(px, px + n, packed);
+    } else {
+      for (int i = 0; i < n; ++i) std::memcpy(dst + 4 * i, c, 4 * sizeof(T));
+    }
+    return;
+  }
+  const T* src = s.shade(y, x0, n);
+  s.run(dst, src, s.shader.is_constant() ? 0 : 4, nullptr, coverage * s.alpha, nullptr, n);
+}
+
+template <class T>
+void Compositor<T>::row(int y, int x0, int x1, const float* coverage) {
+  row(y, x0, x1, coverage, nullptr);
+}
+
+template <class T>
+void Compositor<T>::row(int y, int x0, int x1, const float* coverage, const float* clip) {
+  State& s = *state_;
+  int skip = 0;
+  if (s.nothing || !s.clip_to_view(y, x0, x1, skip)) return;
+  const int n = x1 - x0;
+  const T* src = s.shade(y, x0, n);
+  s.run(s.view.pixel(x0, y), src, s.shader.is_constant() ? 0 : 4, coverage ? coverage + skip : nullptr, s.alpha,
+        clip ? clip + skip : nullptr, n);
+}
+
+template class Compositor<std::uint8_t>;
+template class Compositor<std::uint16_t>;
+
+}  // namespace vraster
