@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli/cli.hpp"
+#include "cli/image_compare.hpp"
 #include "svg_subset/svg.hpp"
 #include "vraster/canvas.hpp"
 #include "vraster/fxaa.hpp"
@@ -27,8 +28,8 @@ namespace {
 
 constexpr const char* kUsage =
     "usage:\n"
-    "  vraster render IN.svg -o OUT.png [--aa MODE] [--rule RULE] [--tolerance T]\n"
-    "                 [--depth 8|16] [--background COLOR|transparent] [--bench N]\n"
+    "  vraster render IN.svg -o OUT.png [-w|--width W] [-h|--height H] [--quiet] [--aa MODE] [--rule RULE]\n"
+    "                 [--tolerance T] [--depth 8|16] [--background COLOR|transparent] [--bench N]\n"
     "                 [--hairline bresenham|dda|wu|analytic]   (every stroke as a 1-px hairline)\n"
     "  vraster fill-rules IN.svg -o SHEET.png [--winding] [--aa MODE] [--panel PX]\n"
     "  vraster text \"TEXT\" -o OUT.png [--font FILE]... [--face-index N] [--size PX] [--width W]\n"
@@ -36,6 +37,7 @@ constexpr const char* kUsage =
     "               [--features F] [--lang L] [--script S] [--dir auto|ltr|rtl] [--hinting none|light]\n"
     "               [--margin PX]\n"
     "  vraster accuracy [SCENE.svg...] -o DIR [--frames N] [--max-side PX]   (AA methods: time vs error)\n"
+    "  vraster compare REFERENCE.png OURS.png [--diff DIFF.png]   (the conformance pass rule)\n"
     "  vraster demo [-o FILE]\n"
     "MODE: none | analytic | exact | ssaa-2|4|8|16 | msaa-4|8|16 | fxaa\n"
     "RULE: evenodd | nonzero | nonexterior | positive | negative | abs-geq-2 (overrides the file's fill-rule)\n";
@@ -47,13 +49,16 @@ struct RenderArgs {
   int depth = 8;
   Color background = Color::transparent();
   int bench_frames = 0;
+  int width = 0, height = 0;  ///< requested output size (0: from the document)
+  bool quiet = false;         ///< no warnings on stderr
+  bool help = false;
 };
 
 double parse_number(std::string_view flag, std::string_view text) {
   double v = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) {
-    throw UsageError{std::string(flag) + ": '" + std::string(text) + "' is not a number"};
+    throw UsageError{std::string(flag) + ": " + quoted(text) + " is not a number"};
   }
   return v;
 }
@@ -80,13 +85,25 @@ RenderArgs parse_render_args(int argc, char** argv) {
     const std::string_view arg = r.next();
     if (arg == "-o" || arg == "--output") {
       a.output = r.value(arg);
+    } else if (arg == "--help") {
+      a.help = true;
+      return a;
+    } else if (arg == "-w" || arg == "--width" || arg == "-h" || arg == "--height") {
+      const double n = parse_number(arg, r.value(arg));
+      if (!(n >= 1 && n <= kMaxImageSide) || n != std::floor(n)) {
+        throw UsageError{std::string(arg) + " needs a whole number of pixels from 1 to " +
+                         std::to_string(kMaxImageSide)};
+      }
+      (arg == "-w" || arg == "--width" ? a.width : a.height) = static_cast<int>(n);
+    } else if (arg == "--quiet") {
+      a.quiet = true;
     } else if (arg == "--aa") {
       const auto v = r.value(arg);
-      if (!parse_anti_alias(v, a.settings.aa)) throw UsageError{"--aa: unknown mode '" + std::string(v) + "'"};
+      if (!parse_anti_alias(v, a.settings.aa)) throw UsageError{"--aa: unknown mode " + quoted(v)};
     } else if (arg == "--rule") {
       const auto v = r.value(arg);
       FillRule rule;
-      if (!parse_fill_rule(v, rule)) throw UsageError{"--rule: unknown fill rule '" + std::string(v) + "'"};
+      if (!parse_fill_rule(v, rule)) throw UsageError{"--rule: unknown fill rule " + quoted(v)};
       a.settings.rule_override = rule;
     } else if (arg == "--tolerance") {
       a.settings.tolerance = parse_number(arg, r.value(arg));
@@ -96,7 +113,7 @@ RenderArgs parse_render_args(int argc, char** argv) {
     } else if (arg == "--hairline") {
       const auto v = r.value(arg);
       HairlineMode mode;
-      if (!parse_hairline_mode(v, mode)) throw UsageError{"--hairline: unknown mode '" + std::string(v) + "'"};
+      if (!parse_hairline_mode(v, mode)) throw UsageError{"--hairline: unknown mode " + quoted(v)};
       a.settings.hairline = mode;
     } else if (arg == "--depth") {
       const double d = parse_number(arg, r.value(arg));
@@ -109,7 +126,7 @@ RenderArgs parse_render_args(int argc, char** argv) {
       } else {
         bool none = false;
         const auto c = svg::parse_color(v, none);
-        if (!c) throw UsageError{"--background: '" + std::string(v) + "' is not a colour"};
+        if (!c) throw UsageError{"--background: " + quoted(v) + " is not a colour"};
         a.background = *c;
       }
     } else if (arg == "--bench") {
@@ -117,7 +134,7 @@ RenderArgs parse_render_args(int argc, char** argv) {
       if (!(n >= 1 && n <= 1e6) || n != std::floor(n)) throw UsageError{"--bench needs a frame count from 1 to 1000000"};
       a.bench_frames = static_cast<int>(n);
     } else if (!arg.empty() && arg[0] == '-') {
-      throw UsageError{"unknown option '" + std::string(arg) + "'"};
+      throw UsageError{"unknown option " + quoted(arg)};
     } else if (a.input.empty()) {
       a.input = arg;
     } else {
@@ -160,8 +177,18 @@ void render_document(const svg::Document& doc, const RenderArgs& a) {
 
 int run_render(int argc, char** argv) {
   const RenderArgs a = parse_render_args(argc, argv);
-  const svg::Document doc = svg::load_svg(a.input);
-  for (const std::string& w : doc.warnings) std::cerr << a.input << ":" << w << "\n";
+  if (a.help) {
+    std::cout << kUsage;
+    return 0;
+  }
+  svg::Document doc = svg::load_svg(a.input);
+  if (!a.quiet) {
+    for (const std::string& w : doc.warnings) std::cerr << printable(a.input, 1024) << ":" << w << "\n";
+  }
+  if (a.width > 0 || a.height > 0) {
+    const auto [w, h] = svg::output_size(doc, a.width, a.height);
+    svg::scale_to(doc, w, h);
+  }
   if (a.depth == 16) {
     render_document<std::uint16_t>(doc, a);
   } else {
@@ -178,7 +205,7 @@ int run_demo(int argc, char** argv) {
     if (arg == "-o" || arg == "--output") {
       output = r.value(arg);
     } else {
-      throw UsageError{"demo: unknown argument '" + std::string(arg) + "'"};
+      throw UsageError{"demo: unknown argument " + quoted(arg)};
     }
   }
   const svg::Document doc = svg::parse_svg(demo_svg(), "<demo>");
@@ -205,6 +232,7 @@ int main(int argc, char** argv) {
     const std::string_view command = argv[1];
     if (command == "render") return cli::run_render(argc, argv);
     if (command == "demo") return cli::run_demo(argc, argv);
+    if (command == "compare") return cli::run_compare(argc, argv);
     if (command == "fill-rules") return cli::run_fill_rules(argc, argv);
     if (command == "accuracy") return cli::run_accuracy(argc, argv);
 #if VRASTER_WITH_TEXT
@@ -216,13 +244,11 @@ int main(int argc, char** argv) {
     }
     throw cli::UsageError{"unknown command '" + std::string(command) + "'"};
   } catch (const cli::UsageError& e) {
-    std::cerr << "vraster: " << e.message << "\n" << cli::kUsage;
+    std::cerr << "vraster: " << printable(e.message, kMaxMessageBytes) << "\n" << cli::kUsage;
     return 2;
-  } catch (const Error& e) {
-    std::cerr << "vraster: " << e.what() << "\n";
-    return 2;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "vraster: out of memory\n";
+  } catch (...) {
+    // Everything else, std::filesystem errors included: a message and status 2, never std::terminate.
+    std::cerr << "vraster: " << describe_current_exception() << "\n";
     return 2;
   }
 }

@@ -1,4 +1,5 @@
 // svg_subset: drawing a parsed Document with vraster.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
@@ -26,8 +27,8 @@ std::vector<double> normalized_dashes(const std::vector<double>& dashes) {
 
 /// The centre lines of a stroke for hairline drawing: the path itself, or its dashes (cut in user space).
 Path hairline_centre_lines(const DrawItem& item, double device_tolerance) {
+  if (check_dashes(item.path, item.stroke.dashes) != DashVerdict::Dashed) return item.path;
   const std::vector<double> pattern = normalized_dashes(item.stroke.dashes);
-  if (pattern.empty()) return item.path;
   std::vector<StrokePolyline> pieces, dashed;
   flatten_for_stroke(item.path, user_tolerance(item.transform, device_tolerance), pieces);
   dash_polylines(pieces, pattern, item.stroke.dash_offset, dashed);
@@ -55,17 +56,52 @@ void draw_hairline(BasicImage<T>& image, const DrawItem& item, HairlineMode mode
 
 }  // namespace
 
+std::pair<int, int> output_size(const Document& doc, int width, int height) {
+  if (width > 0 && height > 0) return {width, height};
+  if (width <= 0 && height <= 0) return {doc.width, doc.height};
+  // Single precision, as resvg computes it (the reference images were made that way).
+  const float w = std::max(1.0f, std::round(static_cast<float>(doc.intrinsic_width)));
+  const float h = std::max(1.0f, std::round(static_cast<float>(doc.intrinsic_height)));
+  const double other = std::max(1.0f, width > 0 ? std::ceil(static_cast<float>(width) * h / w)
+                                                : std::ceil(static_cast<float>(height) * w / h));
+  if (width > 0) {
+    check_image_size(width, other);  // before the cast: the other side can be out of int's range
+    return {width, static_cast<int>(other)};
+  }
+  check_image_size(other, height);
+  return {static_cast<int>(other), height};
+}
+
+void scale_to(Document& doc, int width, int height) {
+  check_image_size(width, height);
+  const Affine scale = Affine::scale(width / doc.intrinsic_width, height / doc.intrinsic_height);
+  for (DrawItem& item : doc.items) item.transform = scale * item.transform;
+  doc.width = width;
+  doc.height = height;
+  doc.intrinsic_width = width;
+  doc.intrinsic_height = height;
+}
+
 template <class T>
 void render(const Document& doc, BasicImage<T>& image, const RenderSettings& settings, Renderer& renderer) {
   for (const DrawItem& item : doc.items) {
-    if (item.is_fill()) {
-      const FillOptions options{settings.rule_override.value_or(item.rule), settings.aa, settings.tolerance};
-      renderer.fill(image, item.path, item.transform, item.color, options);
-    } else if (settings.hairline) {
-      draw_hairline(image, item, *settings.hairline, settings.tolerance);
-    } else {
-      const StrokeRenderOptions options{settings.aa, settings.tolerance, HairlineMode::Analytic, &renderer};
-      stroke_path(image, item.path, item.transform, item.stroke, item.color, options);
+    try {
+      if (item.is_fill()) {
+        const FillOptions options{settings.rule_override.value_or(item.rule), settings.aa, settings.tolerance};
+        renderer.fill(image, item.path, item.transform, item.color, options);
+      } else if (settings.hairline) {
+        draw_hairline(image, item, *settings.hairline, settings.tolerance);
+      } else {
+        const StrokeRenderOptions options{settings.aa, settings.tolerance, HairlineMode::Analytic, &renderer};
+        stroke_path(image, item.path, item.transform, item.stroke, item.color, options);
+      }
+    } catch (const ParseError&) {
+      throw;
+    } catch (const Error& e) {
+      // A limit of the core (work or memory per draw call): the message names the element.
+      throw ParseError(doc.file, item.line, item.column,
+                       std::string("cannot draw the ") + (item.is_fill() ? "fill" : "stroke") + " of this element: " +
+                           e.what());
     }
   }
 }
