@@ -48,6 +48,8 @@ static void draw(vr_canvas* c) {
   vr_canvas_begin_path(c);
   vr_canvas_round_rect(c, 40, 40, 400, 200, 24);
   vr_canvas_clip(c, VR_FILL_NONZERO);
+  vr_canvas_set_fill_rgba(c, 1, 1, 1, 0.08); /* the frame itself, faintly */
+  vr_canvas_fill(c, VR_FILL_NONZERO);
   vr_paint_add_stop(sun, 0, 1, 0.95, 0.6, 1);
   vr_paint_add_stop(sun, 0.6, 1, 0.6, 0.2, 1);
   vr_paint_add_stop(sun, 1, 1, 0.3, 0.1, 0);

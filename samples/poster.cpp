@@ -37,6 +37,8 @@ void draw(Canvas& c) {
   c.begin_path();
   c.round_rect(40, 40, 400, 200, 24);
   c.clip(FillRule::NonZero);
+  c.set_fill_color(rgb(1, 1, 1, 0.08));  // the frame itself, faintly
+  c.fill(FillRule::NonZero);
   Paint sun = Paint::radial({420, 70}, 0, {420, 70}, 80);
   sun.add_stop(0, rgb(1, 0.95, 0.6));
   sun.add_stop(0.6, rgb(1, 0.6, 0.2));

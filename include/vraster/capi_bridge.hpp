@@ -2,11 +2,13 @@
 // vr_canvas_fill_text) and for C++ programs that mix vr_* handles with the C++ API.
 #pragma once
 
+#include <cstring>
 #include <exception>
 #include <memory>
 #include <new>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 #include "vraster/canvas.hpp"
 #include "vraster/error.hpp"
@@ -33,6 +35,17 @@ const Image* image_of(const vr_image* img);
 std::shared_ptr<const Extension> extension(const vr_canvas* c, const void* key);
 /// Replaces it in the current state (saved states keep theirs).
 void set_extension(vr_canvas* c, const void* key, std::shared_ptr<const Extension> value);
+
+/// The int a C caller passed for an enum parameter. C allows any int there; reading it through the enum type in
+/// C++ is undefined behaviour when it is not one of the enumerators, so every entry point reads its enums with
+/// this, then checks the range.
+template <class E>
+int raw(const E& value) {
+  static_assert(std::is_enum_v<E> && sizeof(E) == sizeof(int));
+  int v;
+  std::memcpy(&v, &value, sizeof v);
+  return v;
+}
 
 /// Sets this thread's vr_last_error() message (kept in a fixed buffer: long messages are cut, nothing allocates).
 void set_error(std::string_view message) noexcept;

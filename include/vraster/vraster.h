@@ -49,7 +49,8 @@ typedef enum vr_fill_rule {
   VR_FILL_NONEXTERIOR = 2, /**< every point that cannot reach infinity without crossing the path */
   VR_FILL_POSITIVE = 3,    /**< w > 0 */
   VR_FILL_NEGATIVE = 4,    /**< w < 0 */
-  VR_FILL_ABS_GEQ_2 = 5    /**< |w| >= 2 */
+  VR_FILL_ABS_GEQ_2 = 5,   /**< |w| >= 2 */
+  VR_FILL_RULE_MAX_ENUM = 0x7fffffff /**< (every enum has one: it keeps the type as wide as an int) */
 } vr_fill_rule;
 
 /** How coverage is computed. */
@@ -58,11 +59,22 @@ typedef enum vr_antialias {
   VR_AA_ANALYTIC = 1, /**< area coverage (exact unless edges cross inside a pixel); the default */
   VR_AA_EXACT = 2,    /**< true area coverage for every rule */
   VR_AA_SSAA_4 = 3,   /**< 4 x 4 regular samples per pixel (for comparison) */
-  VR_AA_MSAA_16 = 4   /**< 16 sparse samples per pixel (for comparison) */
+  VR_AA_MSAA_16 = 4,  /**< 16 sparse samples per pixel (for comparison) */
+  VR_ANTIALIAS_MAX_ENUM = 0x7fffffff
 } vr_antialias;
 
-typedef enum vr_line_cap { VR_CAP_BUTT = 0, VR_CAP_ROUND = 1, VR_CAP_SQUARE = 2 } vr_line_cap;
-typedef enum vr_line_join { VR_JOIN_MITER = 0, VR_JOIN_ROUND = 1, VR_JOIN_BEVEL = 2 } vr_line_join;
+typedef enum vr_line_cap {
+  VR_CAP_BUTT = 0,
+  VR_CAP_ROUND = 1,
+  VR_CAP_SQUARE = 2,
+  VR_LINE_CAP_MAX_ENUM = 0x7fffffff
+} vr_line_cap;
+typedef enum vr_line_join {
+  VR_JOIN_MITER = 0,
+  VR_JOIN_ROUND = 1,
+  VR_JOIN_BEVEL = 2,
+  VR_LINE_JOIN_MAX_ENUM = 0x7fffffff
+} vr_line_join;
 
 /** The HTML canvas globalCompositeOperation values (Porter-Duff, lighter, and the W3C blend modes). */
 typedef enum vr_composite {
@@ -92,15 +104,31 @@ typedef enum vr_composite {
   VR_COMPOSITE_HUE,
   VR_COMPOSITE_SATURATION,
   VR_COMPOSITE_COLOR,
-  VR_COMPOSITE_LUMINOSITY
+  VR_COMPOSITE_LUMINOSITY,
+  VR_COMPOSITE_MAX_ENUM = 0x7fffffff
 } vr_composite;
 
 /** What a gradient or pattern does outside its range or tile. VR_EXTEND_NONE is for patterns only. */
-typedef enum vr_extend { VR_EXTEND_PAD = 0, VR_EXTEND_REPEAT = 1, VR_EXTEND_REFLECT = 2, VR_EXTEND_NONE = 3 } vr_extend;
+typedef enum vr_extend {
+  VR_EXTEND_PAD = 0,
+  VR_EXTEND_REPEAT = 1,
+  VR_EXTEND_REFLECT = 2,
+  VR_EXTEND_NONE = 3,
+  VR_EXTEND_MAX_ENUM = 0x7fffffff
+} vr_extend;
 /** How images are sampled (patterns, draw_image). */
-typedef enum vr_filter { VR_FILTER_NEAREST = 0, VR_FILTER_BILINEAR = 1, VR_FILTER_BICUBIC = 2 } vr_filter;
+typedef enum vr_filter {
+  VR_FILTER_NEAREST = 0,
+  VR_FILTER_BILINEAR = 1,
+  VR_FILTER_BICUBIC = 2,
+  VR_FILTER_MAX_ENUM = 0x7fffffff
+} vr_filter;
 /** How a layer mask becomes coverage. */
-typedef enum vr_mask_mode { VR_MASK_ALPHA = 0, VR_MASK_LUMINANCE = 1 } vr_mask_mode;
+typedef enum vr_mask_mode {
+  VR_MASK_ALPHA = 0,
+  VR_MASK_LUMINANCE = 1,
+  VR_MASK_MODE_MAX_ENUM = 0x7fffffff
+} vr_mask_mode;
 
 /* ---- errors ---- */
 

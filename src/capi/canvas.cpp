@@ -9,14 +9,11 @@
 
 using vraster::capi::guard;
 using vraster::capi::present;
+using vraster::capi::raw;
 using vraster::capi::set_error;
 
 namespace vraster::capi {
 namespace {
-
-bool finite(std::initializer_list<double> values) {
-  return std::all_of(values.begin(), values.end(), [](double v) { return std::isfinite(v); });
-}
 
 // Runs `body(canvas)` for a present canvas; 0 on success, -1 on failure.
 template <class Handle, class F>
@@ -35,27 +32,24 @@ int bad_enum(const char* function, const char* what, int value) {
   return -1;
 }
 
-bool to_rule(vr_fill_rule rule, FillRule& out) {
+bool to_rule(int i, FillRule& out) {
   static constexpr FillRule kRules[] = {FillRule::NonZero,  FillRule::EvenOdd,  FillRule::NonExterior,
                                         FillRule::Positive, FillRule::Negative, FillRule::AbsGeq2};
-  const int i = static_cast<int>(rule);
   if (i < 0 || i >= static_cast<int>(std::size(kRules))) return false;
   out = kRules[i];
   return true;
 }
 
-bool to_op(vr_composite op, CompositeOp& out) {
+bool to_op(int i, CompositeOp& out) {
   static_assert(VR_COMPOSITE_LUMINOSITY + 1 == kCompositeOpCount);
   static_assert(static_cast<int>(CompositeOp::Luminosity) == VR_COMPOSITE_LUMINOSITY);
   static_assert(static_cast<int>(CompositeOp::Multiply) == VR_COMPOSITE_MULTIPLY);
-  const int i = static_cast<int>(op);
   if (i < 0 || i >= kCompositeOpCount) return false;
   out = static_cast<CompositeOp>(i);
   return true;
 }
 
-bool to_filter(vr_filter filter, ImageFilter& out) {
-  const int i = static_cast<int>(filter);
+bool to_filter(int i, ImageFilter& out) {
   if (i < 0 || i > 2) return false;
   out = static_cast<ImageFilter>(i);
   return true;
@@ -175,7 +169,7 @@ int vr_canvas_close_path(vr_canvas* c) {
 
 int vr_canvas_fill(vr_canvas* c, vr_fill_rule rule) {
   FillRule r;
-  if (!to_rule(rule, r)) return bad_enum(__func__, "vr_fill_rule", rule);
+  if (!to_rule(raw(rule), r)) return bad_enum(__func__, "vr_fill_rule", raw(rule));
   return with_canvas(c, __func__, [&](vr_canvas& s) { s.canvas.fill(r); });
 }
 int vr_canvas_stroke(vr_canvas* c) {
@@ -183,7 +177,7 @@ int vr_canvas_stroke(vr_canvas* c) {
 }
 int vr_canvas_clip(vr_canvas* c, vr_fill_rule rule) {
   FillRule r;
-  if (!to_rule(rule, r)) return bad_enum(__func__, "vr_fill_rule", rule);
+  if (!to_rule(raw(rule), r)) return bad_enum(__func__, "vr_fill_rule", raw(rule));
   return with_canvas(c, __func__, [&](vr_canvas& s) { s.canvas.clip(r); });
 }
 int vr_canvas_fill_rect(vr_canvas* c, double x, double y, double w, double h) {
@@ -239,12 +233,14 @@ int vr_canvas_set_line_width(vr_canvas* c, double width) {
   return with_canvas(c, __func__, [&](vr_canvas& s) { s.canvas.set_line_width(width); });
 }
 int vr_canvas_set_line_cap(vr_canvas* c, vr_line_cap cap) {
-  if (cap < VR_CAP_BUTT || cap > VR_CAP_SQUARE) return bad_enum(__func__, "vr_line_cap", cap);
-  return with_canvas(c, __func__, [&](vr_canvas& s) { s.canvas.set_line_cap(static_cast<LineCap>(cap)); });
+  const int v = raw(cap);
+  if (v < VR_CAP_BUTT || v > VR_CAP_SQUARE) return bad_enum(__func__, "vr_line_cap", v);
+  return with_canvas(c, __func__, [&](vr_canvas& s) { s.canvas.set_line_cap(static_cast<LineCap>(v)); });
 }
 int vr_canvas_set_line_join(vr_canvas* c, vr_line_join join) {
-  if (join < VR_JOIN_MITER || join > VR_JOIN_BEVEL) return bad_enum(__func__, "vr_line_join", join);
-  return with_canvas(c, __func__, [&](vr_canvas& s) { s.canvas.set_line_join(static_cast<LineJoin>(join)); });
+  const int v = raw(join);
+  if (v < VR_JOIN_MITER || v > VR_JOIN_BEVEL) return bad_enum(__func__, "vr_line_join", v);
+  return with_canvas(c, __func__, [&](vr_canvas& s) { s.canvas.set_line_join(static_cast<LineJoin>(v)); });
 }
 int vr_canvas_set_miter_limit(vr_canvas* c, double limit) {
   return with_canvas(c, __func__, [&](vr_canvas& s) { s.canvas.set_miter_limit(limit); });
@@ -262,7 +258,7 @@ int vr_canvas_set_global_alpha(vr_canvas* c, double alpha) {
 }
 int vr_canvas_set_composite(vr_canvas* c, vr_composite op) {
   CompositeOp o;
-  if (!to_op(op, o)) return bad_enum(__func__, "vr_composite", op);
+  if (!to_op(raw(op), o)) return bad_enum(__func__, "vr_composite", raw(op));
   return with_canvas(c, __func__, [&](vr_canvas& s) {
     s.canvas.set_composite(o);
     s.state.op = o;
@@ -271,15 +267,16 @@ int vr_canvas_set_composite(vr_canvas* c, vr_composite op) {
 int vr_canvas_set_antialias(vr_canvas* c, vr_antialias aa) {
   static constexpr AntiAlias kModes[] = {AntiAlias::None, AntiAlias::Analytic, AntiAlias::Exact, AntiAlias::Ssaa4,
                                          AntiAlias::Msaa16};
-  if (aa < 0 || aa >= static_cast<int>(std::size(kModes))) return bad_enum(__func__, "vr_antialias", aa);
-  return with_canvas(c, __func__, [&](vr_canvas& s) { s.canvas.set_anti_alias(kModes[aa]); });
+  const int v = raw(aa);
+  if (v < 0 || v >= static_cast<int>(std::size(kModes))) return bad_enum(__func__, "vr_antialias", v);
+  return with_canvas(c, __func__, [&](vr_canvas& s) { s.canvas.set_anti_alias(kModes[v]); });
 }
 int vr_canvas_set_tolerance(vr_canvas* c, double device_pixels) {
   return with_canvas(c, __func__, [&](vr_canvas& s) { s.canvas.set_tolerance(device_pixels); });
 }
 int vr_canvas_set_image_smoothing(vr_canvas* c, int on, vr_filter filter) {
   ImageFilter f;
-  if (!to_filter(filter, f)) return bad_enum(__func__, "vr_filter", filter);
+  if (!to_filter(raw(filter), f)) return bad_enum(__func__, "vr_filter", raw(filter));
   return with_canvas(c, __func__, [&](vr_canvas& s) {
     s.canvas.set_image_smoothing(on != 0);
     s.canvas.set_image_filter(f);
@@ -299,8 +296,11 @@ int vr_canvas_set_shadow(vr_canvas* c, double r, double g, double b, double a, d
 int vr_canvas_begin_layer_masked(vr_canvas* c, float opacity, vr_composite op, const vr_image* mask, int mask_x,
                                  int mask_y, vr_mask_mode mode) {
   CompositeOp o;
-  if (!to_op(op, o)) return bad_enum(__func__, "vr_composite", op);
-  if (mode != VR_MASK_ALPHA && mode != VR_MASK_LUMINANCE) return bad_enum(__func__, "vr_mask_mode", mode);
+  if (!to_op(raw(op), o)) return bad_enum(__func__, "vr_composite", raw(op));
+  const int mask_mode = raw(mode);
+  if (mask_mode != VR_MASK_ALPHA && mask_mode != VR_MASK_LUMINANCE) {
+    return bad_enum(__func__, "vr_mask_mode", mask_mode);
+  }
   return with_canvas(c, __func__, [&](vr_canvas& s) {
     LayerOptions options;
     // A NaN or infinite opacity is a bad number like any other: the layer still opens (so end_layer pairs with
@@ -311,7 +311,7 @@ int vr_canvas_begin_layer_masked(vr_canvas* c, float opacity, vr_composite op, c
       options.mask = std::make_shared<const Image>(*mask->image);
       options.mask_x = mask_x;
       options.mask_y = mask_y;
-      options.mask_mode = mode == VR_MASK_ALPHA ? MaskMode::Alpha : MaskMode::Luminance;
+      options.mask_mode = mask_mode == VR_MASK_ALPHA ? MaskMode::Alpha : MaskMode::Luminance;
     }
     s.canvas.begin_layer(options);
     mirror_save(s);
@@ -361,7 +361,7 @@ int vr_canvas_put_pixels(vr_canvas* c, const vr_image* img, int x, int y) {
 }
 int vr_canvas_is_point_in_path(const vr_canvas* c, double x, double y, vr_fill_rule rule) {
   FillRule r;
-  if (!to_rule(rule, r)) return bad_enum(__func__, "vr_fill_rule", rule);
+  if (!to_rule(raw(rule), r)) return bad_enum(__func__, "vr_fill_rule", raw(rule));
   if (!present(c, __func__, "canvas")) return -1;
   return guard(-1, [&] { return c->canvas.is_point_in_path(x, y, r) ? 1 : 0; });
 }

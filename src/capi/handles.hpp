@@ -1,6 +1,9 @@
 // vraster C API: what the opaque handles hold.
 #pragma once
 
+#include <cmath>
+
+#include <initializer_list>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -38,6 +41,14 @@ struct vr_canvas {
 };
 
 namespace vraster::capi {
+/// Whether every value is finite (bad numbers make canvas calls do nothing, paint constructors fail).
+inline bool finite(std::initializer_list<double> values) {
+  for (double v : values) {
+    if (!std::isfinite(v)) return false;
+  }
+  return true;
+}
+
 /// Reports a null handle or pointer (named with the function that got it); true when it is not null.
 bool present(const void* handle, const char* function, const char* what) noexcept;
 }  // namespace vraster::capi

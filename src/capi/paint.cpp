@@ -4,18 +4,13 @@
 #include "capi/handles.hpp"
 
 using namespace vraster;
+using vraster::capi::finite;
 using vraster::capi::guard;
 using vraster::capi::present;
+using vraster::capi::raw;
 using vraster::capi::set_error;
 
 namespace {
-
-bool finite(std::initializer_list<double> values) {
-  for (double v : values) {
-    if (!std::isfinite(v)) return false;
-  }
-  return true;
-}
 
 // A new paint handle, or NULL with a message naming the function when the numbers are unusable.
 template <class F>
@@ -34,7 +29,7 @@ Color clamped(double r, double g, double b, double a) {
   return {channel(r), channel(g), channel(b), channel(a)};
 }
 
-bool to_extend(vr_extend e, Extend& out) {
+bool to_extend(int e, Extend& out) {
   switch (e) {
     case VR_EXTEND_PAD: out = Extend::Pad; return true;
     case VR_EXTEND_REPEAT: out = Extend::Repeat; return true;
@@ -95,12 +90,14 @@ int vr_paint_add_stop(vr_paint* p, double offset, double r, double g, double b, 
   });
 }
 
-int vr_paint_set_extend_xy(vr_paint* p, vr_extend x, vr_extend y) {
-  if (!present(p, __func__, "paint")) return -1;
+namespace {
+
+int set_extend(vr_paint* p, int x, int y, const char* function) {
+  if (!present(p, function, "paint")) return -1;
   Extend ex, ey;
-  if (!to_extend(x, ex) || !to_extend(y, ey)) return fail(__func__, "not a valid vr_extend");
+  if (!to_extend(x, ex) || !to_extend(y, ey)) return fail(function, "not a valid vr_extend");
   if (p->paint.kind() != Paint::Kind::Pattern && (ex != ey || ex == Extend::None)) {
-    return fail(__func__, "gradients take one extend mode, pad, repeat or reflect");
+    return fail(function, "gradients take one extend mode, pad, repeat or reflect");
   }
   return guard(-1, [&] {
     p->paint.set_extend(ex, ey);
@@ -108,13 +105,17 @@ int vr_paint_set_extend_xy(vr_paint* p, vr_extend x, vr_extend y) {
   });
 }
 
-int vr_paint_set_extend(vr_paint* p, vr_extend extend) { return vr_paint_set_extend_xy(p, extend, extend); }
+}  // namespace
+
+int vr_paint_set_extend_xy(vr_paint* p, vr_extend x, vr_extend y) { return set_extend(p, raw(x), raw(y), __func__); }
+int vr_paint_set_extend(vr_paint* p, vr_extend e) { return set_extend(p, raw(e), raw(e), __func__); }
 
 int vr_paint_set_filter(vr_paint* p, vr_filter filter) {
   if (!present(p, __func__, "paint")) return -1;
-  if (filter < VR_FILTER_NEAREST || filter > VR_FILTER_BICUBIC) return fail(__func__, "not a valid vr_filter");
+  const int v = raw(filter);
+  if (v < VR_FILTER_NEAREST || v > VR_FILTER_BICUBIC) return fail(__func__, "not a valid vr_filter");
   return guard(-1, [&] {
-    p->paint.set_filter(static_cast<ImageFilter>(filter));
+    p->paint.set_filter(static_cast<ImageFilter>(v));
     return 0;
   });
 }
@@ -153,9 +154,10 @@ int vr_composite_from_name(const char* css_name, vr_composite* out) {
 }
 
 const char* vr_composite_name(vr_composite op) {
-  if (op < 0 || op >= kCompositeOpCount) return "";
+  const int v = raw(op);
+  if (v < 0 || v >= kCompositeOpCount) return "";
   // to_string returns views of string literals, which are NUL-terminated.
-  return to_string(static_cast<CompositeOp>(op)).data();
+  return to_string(static_cast<CompositeOp>(v)).data();
 }
 
 }  // extern "C"

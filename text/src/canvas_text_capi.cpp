@@ -102,15 +102,15 @@ int vr_canvas_set_font(vr_canvas* c, const vr_font* font, double size) {
 }
 
 int vr_canvas_set_text_align(vr_canvas* c, vr_text_align align) {
-  if (align < VR_ALIGN_START || align > VR_ALIGN_CENTER) return fail(__func__, "not a valid vr_text_align");
-  return change_text_state(c, __func__, [&](CanvasFont& f) { f.align = static_cast<TextAlign>(align); });
+  const int v = capi::raw(align);
+  if (v < VR_ALIGN_START || v > VR_ALIGN_CENTER) return fail(__func__, "not a valid vr_text_align");
+  return change_text_state(c, __func__, [&](CanvasFont& f) { f.align = static_cast<TextAlign>(v); });
 }
 
 int vr_canvas_set_text_baseline(vr_canvas* c, vr_text_baseline baseline) {
-  if (baseline < VR_BASELINE_ALPHABETIC || baseline > VR_BASELINE_BOTTOM) {
-    return fail(__func__, "not a valid vr_text_baseline");
-  }
-  return change_text_state(c, __func__, [&](CanvasFont& f) { f.baseline = static_cast<TextBaseline>(baseline); });
+  const int v = capi::raw(baseline);
+  if (v < VR_BASELINE_ALPHABETIC || v > VR_BASELINE_BOTTOM) return fail(__func__, "not a valid vr_text_baseline");
+  return change_text_state(c, __func__, [&](CanvasFont& f) { f.baseline = static_cast<TextBaseline>(v); });
 }
 
 int vr_canvas_set_font_features(vr_canvas* c, const char* features) {

@@ -31,7 +31,8 @@ typedef enum vr_text_align {
   VR_ALIGN_END = 1,
   VR_ALIGN_LEFT = 2,
   VR_ALIGN_RIGHT = 3,
-  VR_ALIGN_CENTER = 4
+  VR_ALIGN_CENTER = 4,
+  VR_TEXT_ALIGN_MAX_ENUM = 0x7fffffff
 } vr_text_align;
 
 /** canvas textBaseline: which line of the text the y coordinate is on. */
@@ -41,7 +42,8 @@ typedef enum vr_text_baseline {
   VR_BASELINE_HANGING = 2,
   VR_BASELINE_MIDDLE = 3,
   VR_BASELINE_IDEOGRAPHIC = 4,
-  VR_BASELINE_BOTTOM = 5
+  VR_BASELINE_BOTTOM = 5,
+  VR_TEXT_BASELINE_MAX_ENUM = 0x7fffffff
 } vr_text_baseline;
 
 /** canvas TextMetrics, in user-space pixels from the anchor point (ascents count upwards). */
