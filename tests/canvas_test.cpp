@@ -773,6 +773,47 @@ TEST(CanvasShadow, BlurredShadowIsAGaussianOfSigmaHalfTheBlur) {
   EXPECT_EQ(image.pixel(45, 10)[3], 255);
 }
 
+// ---- images ----
+
+TEST(CanvasImage, DrawImageAtIntegerPositionCopiesPixels) {
+  Image src(3, 2);
+  for (int i = 0; i < 6; ++i) {
+    std::uint8_t* p = src.pixel(i % 3, i / 3);
+    p[0] = static_cast<std::uint8_t>(40 * i);
+    p[1] = static_cast<std::uint8_t>(200 - 30 * i);
+    p[2] = 7;
+    p[3] = 255;
+  }
+  for (bool smooth : {false, true}) {
+    Image image = blank(6, 5);
+    Canvas c(image);
+    c.set_image_smoothing(smooth);
+    c.draw_image(src, 2, 1);
+    for (int y = 0; y < 5; ++y) {
+      for (int x = 0; x < 6; ++x) {
+        const bool in = x >= 2 && x < 5 && y >= 1 && y < 3;
+        EXPECT_EQ(px(image, x, y), in ? px(src, x - 2, y - 1) : rgba(0, 0, 0, 0)) << x << "," << y << " " << smooth;
+      }
+    }
+  }
+}
+
+TEST(CanvasImage, NearestScalingRepeatsPixelsAndSourceRectanglePicksPart) {
+  Image src(2, 2);
+  src.clear({0, 0, 0, 1});
+  src.pixel(1, 0)[0] = 255;  // top-right red
+  Image image = blank(8, 8);
+  Canvas c(image);
+  c.set_image_smoothing(false);
+  c.draw_image(src, 0, 0, 8, 8);
+  EXPECT_EQ(px(image, 5, 2), rgba(255, 0, 0, 255));
+  EXPECT_EQ(px(image, 2, 2), rgba(0, 0, 0, 255));
+  // Source rectangle: only the red pixel, stretched over 4 x 4 at (0, 4).
+  c.draw_image(src, 1, 0, 1, 1, 0, 4, 4, 4);
+  EXPECT_EQ(px(image, 1, 6), rgba(255, 0, 0, 255));
+  EXPECT_EQ(px(image, 5, 6), rgba(0, 0, 0, 255));
+}
+
 // ---- masks, pixels, FXAA ----
 
 TEST(CanvasMask, FillMaskPaintsThroughCoverage) {
