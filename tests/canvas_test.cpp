@@ -645,6 +645,18 @@ TEST(CanvasLayer, OpacityOneSourceOverEqualsDrawingDirectly) {
     c.end_layer();
   }
   EXPECT_EQ(max_diff(d2, l2), 0);
+  // Inside an antialiased clip: the clip applies once (when the layer is composited), as it does to direct drawing.
+  Image d3 = blank(48, 48), l3 = blank(48, 48);
+  for (Image* image : {&d3, &l3}) {
+    Canvas c(*image);
+    c.begin_path();
+    c.arc(24.3, 23.8, 17.6, 0, 2 * kPi);
+    c.clip();
+    if (image == &l3) c.begin_layer();
+    draw_scene(c);
+    if (image == &l3) c.end_layer();
+  }
+  EXPECT_EQ(max_diff(d3, l3), 0);
 }
 
 TEST(CanvasLayer, OpacityScalesTheWholeLayerOnce) {
@@ -864,31 +876,72 @@ TEST(CanvasPixels, ApplyFxaaIsTheFxaaPostFilter) {
 
 // ---- 16 bits ----
 
-TEST(Canvas16, AgreesWithEightBitsWithinOneLevel) {
+// One draw call from the same backdrop (8-bit values, widened exactly to 16 bits). The 8-bit compositor is within
+// 1.5 levels of the formula (it quantizes the premultiplied colour, coverage x alpha and the clip to 1/255 before
+// its one exact rounding: docs/design.md, "Paint and compositing"); 16 bits is within a 1/65535 level of it. So
+// they agree within 2/255, and within 1/255 on almost every pixel.
+TEST(Canvas16, OneDrawCallAgreesWithEightBits) {
+  Image backdrop(40, 40);
+  for (int y = 0; y < 40; ++y) {
+    for (int x = 0; x < 40; ++x) {
+      std::uint8_t* p = backdrop.pixel(x, y);
+      p[3] = static_cast<std::uint8_t>(100 + (x * 7 + y * 3) % 156);
+      p[0] = static_cast<std::uint8_t>(p[3] * ((x * 13) % 256) / 255);
+      p[1] = static_cast<std::uint8_t>(p[3] * ((y * 29) % 256) / 255);
+      p[2] = static_cast<std::uint8_t>(p[3] / 2);
+    }
+  }
+  for (CompositeOp op : {CompositeOp::SourceOver, CompositeOp::Multiply, CompositeOp::Xor, CompositeOp::Copy,
+                         CompositeOp::SourceIn, CompositeOp::Screen}) {
+    Image a(40, 40);
+    Image16 b(40, 40);
+    auto draw = [&](Canvas& c) {
+      c.put_pixels(backdrop, 0, 0);
+      c.begin_path();
+      c.arc(20.3, 19.6, 15.2, 0, 2 * kPi);
+      c.clip();  // an antialiased clip mask
+      c.set_composite(op);
+      c.set_global_alpha(0.8);
+      c.set_fill_color({0.3f, 0.9f, 0.4f, 0.7f});
+      c.translate(20, 20);
+      c.rotate(0.4);
+      c.fill_rect(-17.5, -9.25, 35, 18.5);
+    };
+    {
+      Canvas c(a);
+      draw(c);
+    }
+    Canvas c(b);
+    draw(c);
+    const Image b8 = c.get_pixels(0, 0, 40, 40);
+    EXPECT_LE(max_diff(a, b8), 2) << to_string(op);
+    int beyond_one = 0;
+    for (std::size_t i = 0; i < a.data.size(); ++i) beyond_one += std::abs(int(a.data[i]) - int(b8.data[i])) > 1;
+    EXPECT_LE(beyond_one, static_cast<int>(a.data.size() / 100)) << to_string(op) << ": over 1% of channels off by 2";
+  }
+}
+
+// A whole picture: every step rounds in 8 bits, so the difference may grow with the steps that touch a pixel (up
+// to four here: circle, shape, stroke, layer); in practice it stays within 3 levels.
+TEST(Canvas16, PictureAgreesWithEightBitsWithinOneLevelPerStep) {
   Image a = blank(48, 48);
   Image16 b(48, 48);
   b.clear(Color::transparent());
+  auto draw = [](Canvas& c) {
+    draw_scene(c);
+    c.begin_layer(0.7f);
+    c.set_composite(CompositeOp::Multiply);
+    c.set_fill_color({0.3f, 0.9f, 0.4f, 0.8f});
+    c.fill_rect(5, 5, 30, 20);
+    c.end_layer();
+  };
   {
     Canvas c(a);
-    draw_scene(c);
-    c.begin_layer(0.7f);
-    c.set_composite(CompositeOp::Multiply);
-    c.set_fill_color({0.3f, 0.9f, 0.4f, 0.8f});
-    c.fill_rect(5, 5, 30, 20);
-    c.end_layer();
+    draw(c);
   }
-  {
-    Canvas c(b);
-    draw_scene(c);
-    c.begin_layer(0.7f);
-    c.set_composite(CompositeOp::Multiply);
-    c.set_fill_color({0.3f, 0.9f, 0.4f, 0.8f});
-    c.fill_rect(5, 5, 30, 20);
-    c.end_layer();
-  }
-  Canvas reader(b);
-  const Image b8 = reader.get_pixels(0, 0, 48, 48);
-  EXPECT_LE(max_diff(a, b8), 1);
+  Canvas c(b);
+  draw(c);
+  EXPECT_LE(max_diff(a, c.get_pixels(0, 0, 48, 48)), 3);
 }
 
 }  // namespace

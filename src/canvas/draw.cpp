@@ -421,8 +421,10 @@ void Canvas::Impl::begin_layer(const LayerOptions& options) {
       layer.pixels8.assign(n, 0);
     }
   }
+  // Opacity, operator and the clip's mask apply once, when the layer ends; inside it, drawing starts from the
+  // defaults and is clipped only to the layer's box (clips set inside still intersect, and end with it).
+  state.clip = {layer.box, nullptr};
   layers.push_back(std::move(layer));
-  // Opacity and operator apply once, when the layer ends; inside it, drawing starts from the defaults.
   state.global_alpha = 1;
   state.op = CompositeOp::SourceOver;
   state.shadow = Shadow{};
