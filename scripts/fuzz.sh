@@ -11,7 +11,7 @@ shift || true
 bash scripts/setup.sh --fuzz
 
 # target:max_len (each target also refuses longer inputs itself)
-all=(path_data:4096 raster:3603 svg:16384 stroke:2716 png:65536 text:65536 mesh:3600)
+all=(path_data:4096 raster:3603 svg:16384 stroke:2716 png:65536 text:65536 mesh:3600 canvas:3600)
 if (($# > 0)); then
   wanted=()
   for name in "$@"; do

@@ -225,7 +225,7 @@ expect_no_file("mesh unknown shading" "${WORK}/mesh_out.png")
 # --- demo ---
 run_vraster(demo -o demo-out.png)
 expect_status("demo" 0)
-expect_png("demo" "${WORK}/demo-out.png" 640 400 8)
+expect_png("demo" "${WORK}/demo-out.png" 640 620 8)
 
 # --- hostile input (issue 12): uncaught exceptions, output files, input size caps ---
 execute_process(COMMAND ${CMAKE_COMMAND} -E env VRASTER_BENCH_SCENES=/nonexistent "${VRASTER}" accuracy -o acc_missing

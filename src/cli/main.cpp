@@ -16,6 +16,7 @@
 #include "cli/cli.hpp"
 #include "cli/image_compare.hpp"
 #include "svg_subset/svg.hpp"
+#include "vraster/canvas.hpp"
 #include "vraster/fxaa.hpp"
 #include "vraster/files.hpp"
 #include "vraster/vraster.hpp"
@@ -216,12 +217,16 @@ int run_demo(int argc, char** argv) {
     }
   }
   const svg::Document doc = svg::parse_svg(demo_svg(), "<demo>");
-  Image image(doc.width, doc.height);
+  Image image(doc.width, doc.height + kDemoPanelHeight);
   image.clear(Color{1, 1, 1, 1});
   Renderer renderer;
   svg::render(doc, image, svg::RenderSettings{}, renderer);
+  {
+    Canvas canvas(image);
+    draw_canvas_panel(canvas, doc.height, doc.width, kDemoPanelHeight);
+  }
   write_png(output, image);
-  std::cout << "vraster demo: wrote " << output << " (" << doc.width << "x" << doc.height << ")\n";
+  std::cout << "vraster demo: wrote " << output << " (" << image.width << "x" << image.height << ")\n";
   return 0;
 }
 
