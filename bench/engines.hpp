@@ -29,6 +29,8 @@ class Engine {
 std::unique_ptr<Engine> make_vraster_engine();
 std::unique_ptr<Engine> make_cairo_engine();
 std::unique_ptr<Engine> make_freetype_engine();
+/// Only in builds configured with -DVRASTER_BENCH_BLEND2D_ROOT=PREFIX.
+std::unique_ptr<Engine> make_blend2d_engine();
 
 // The 8-bit source-over math vraster's compositor uses (one uint32 pixel, R in the low byte, two channels per
 // multiply): scale8(px, f) = px * f / 255 per channel, rounded to nearest.

@@ -275,8 +275,14 @@ int main(int argc, char** argv) {
   engines.push_back(bench::make_vraster_engine());
   engines.push_back(bench::make_cairo_engine());
   engines.push_back(bench::make_freetype_engine());
+#ifdef VRASTER_BENCH_WITH_BLEND2D
+  engines.push_back(bench::make_blend2d_engine());
+  constexpr bool kHaveBlend2D = true;
+#else
+  constexpr bool kHaveBlend2D = false;
+#endif
   const std::size_t E = engines.size();
-  constexpr std::size_t kVraster = 0, kCairo = 1, kFreeType = 2;
+  constexpr std::size_t kVraster = 0, kCairo = 1, kFreeType = 2, kBlend2D = 3;
 
   std::vector<Result> results;
   bool load_failed = false;
@@ -415,9 +421,10 @@ int main(int argc, char** argv) {
       : opt.frames > 0 ? "median ms per frame of " + std::to_string(opt.frames) + " frames after 1 warm-up"
                        : "median ms per frame after 1 warm-up, at least 5 frames and " + fmt_ms(opt.seconds) +
                              " s per engine and scene";
-  std::printf("%s; %s; %s; %u hardware threads, 1 used; %s.\n\n", engines[kCairo]->version().c_str(),
-              engines[kFreeType]->version().c_str(), cpu_model().c_str(), std::thread::hardware_concurrency(),
-              method.c_str());
+  std::printf("%s; %s%s%s; %s; %u hardware threads, 1 used; %s.\n\n", engines[kCairo]->version().c_str(),
+              engines[kFreeType]->version().c_str(), kHaveBlend2D ? "; " : "",
+              kHaveBlend2D ? engines[kBlend2D]->version().c_str() : "", cpu_model().c_str(),
+              std::thread::hardware_concurrency(), method.c_str());
 
   if (opt.timing) {
     std::printf("| scene | vraster ms | cairo ms | freetype ms | cairo/vraster | freetype/vraster |\n");
@@ -447,6 +454,25 @@ int main(int argc, char** argv) {
                 rc.empty() ? "-" : fmt_ratio(geomean(rc)).c_str(), rf.empty() ? "-" : fmt_ratio(geomean(rf)).c_str());
     std::printf("\nRatios > 1: vraster is faster. Geometric means of ms are over the scenes each engine renders "
                 "(FreeType's excludes its failures); ratio means are over the scenes both engines render.\n");
+
+    // Against Blend2D measured in this run: the target is vraster / Blend2D <= 1 on every scene.
+    if (kHaveBlend2D) {
+      std::printf("\n| scene | vraster ms | blend2d ms | vraster/blend2d |\n| --- | ---: | ---: | ---: |\n");
+      std::vector<double> rb;
+      for (const Result& r : results) {
+        std::string ratio = "-";
+        if (r.ms[kVraster] && r.ms[kBlend2D]) {
+          const double x = *r.ms[kVraster] / *r.ms[kBlend2D];
+          rb.push_back(x);
+          ratio = fmt_ratio(x);
+        }
+        auto cell = [](const std::optional<double>& v) { return v ? fmt_ms(*v) : std::string("fails"); };
+        std::printf("| %s | %s | %s | %s |\n", r.scene.c_str(), cell(r.ms[kVraster]).c_str(),
+                    cell(r.ms[kBlend2D]).c_str(), ratio.c_str());
+      }
+      std::printf("| **geometric mean** | | | **%s** |\n", rb.empty() ? "-" : fmt_ratio(geomean(rb)).c_str());
+      std::printf("\nvraster/blend2d < 1: vraster is faster (time ratio, single-threaded, same run).\n");
+    }
 
     // Against the anchor figures: vraster's speed-up over FreeType (and Cairo), measured here, next to
     // Blend2D's in ../shared/bench/README.md. "vs Blend2D" = our ratio / Blend2D's ratio (> 1: we would be faster).

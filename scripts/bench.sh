@@ -8,7 +8,9 @@
 #
 # Environment: VRASTER_BENCH_BUILD (build folder, default <repo>/build-bench),
 #              VRASTER_BENCH_SCENES (scene folder, default <repo>/../shared/bench/scenes),
-#              VRASTER_BENCH_CMAKE_ARGS (extra configure arguments, e.g. -DVRASTER_NATIVE=ON).
+#              VRASTER_BENCH_CMAKE_ARGS (extra configure arguments, e.g. -DVRASTER_NATIVE=ON),
+#              VRASTER_BENCH_BLEND2D_ROOT (install prefix of a Blend2D build: adds Blend2D to the comparison; Blend2D
+#              is not a Debian package, so build it outside this repository yourself).
 set -euo pipefail
 
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -25,6 +27,7 @@ done
 
 # shellcheck disable=SC2086  # VRASTER_BENCH_CMAKE_ARGS is a list of words
 cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DVRASTER_BUILD_BENCH=ON -DVRASTER_BUILD_TESTS=OFF \
+  ${VRASTER_BENCH_BLEND2D_ROOT:+-DVRASTER_BENCH_BLEND2D_ROOT="$VRASTER_BENCH_BLEND2D_ROOT"} \
   ${VRASTER_BENCH_CMAKE_ARGS:-} >&2
 cmake --build "$build" -j2 --target vraster_bench >&2
 

@@ -44,6 +44,21 @@ struct StrokeStyle {
   double dash_offset = 0;    ///< distance into the pattern at the start of every subpath (may be negative)
 };
 
+/// Most pattern elements (dashes and gaps) one stroke may be cut into. The count is taken against the length
+/// of the path's control polygon (an upper bound of its arc length), so it is known before any flattening.
+inline constexpr double kMaxDashElements = 1 << 16;
+
+/// What stroking does with a dash pattern on a path.
+enum class DashVerdict : std::uint8_t {
+  None,     ///< no pattern: solid
+  Dashed,   ///< the stroke is cut into dashes
+  Invalid,  ///< a negative or non-finite entry, or a sum that is zero or not finite: solid (SVG: as if "none")
+  TooMany,  ///< more than kMaxDashElements elements on this path (dashes far finer than the path): solid
+};
+/// The verdict every stroking call applies to `dashes` on `path` (user space). Callers that can warn use it to
+/// say why a stroke is drawn solid.
+DashVerdict check_dashes(const Path& path, const std::vector<double>& dashes);
+
 /// Strokes `path` (user space) into a path whose non-zero fill is the stroke area.
 /// `tolerance` (> 0, user units) bounds the distance between the result's boundary and the exact stroke
 /// boundary (curves flattened at tolerance/2, round joins and caps with chord error <= tolerance/2).
@@ -114,8 +129,9 @@ struct StrokePolyline {
 
 /// Step 1: flattens each contour of `path` (identity transform) at `tolerance`, dropping repeated points.
 void flatten_for_stroke(const Path& path, double tolerance, std::vector<StrokePolyline>& out);
-/// Step 2: cuts the pieces by the dash pattern (normalized already: even count, positive sum). A pattern that
-/// would make more than 2^22 dashes (lengths tiny against the path) is ignored: the pieces are copied unchanged.
+/// Step 2: cuts the pieces by the dash pattern (normalized already: even count, finite positive sum). A pattern
+/// that would make more than kMaxDashElements pieces, or a sum that is not finite and positive, is ignored: the
+/// pieces are copied unchanged (a solid stroke).
 void dash_polylines(const std::vector<StrokePolyline>& in, const std::vector<double>& pattern, double offset,
                     std::vector<StrokePolyline>& out);
 /// Step 3: outlines every piece into `out` (appends closed contours).

@@ -595,7 +595,7 @@ int run_accuracy(int argc, char** argv) {
     } else if (arg == "--max-side") {
       max_side = integer(0, kMaxImageSide);
     } else if (!arg.empty() && arg[0] == '-') {
-      throw UsageError{"accuracy: unknown option '" + std::string(arg) + "'"};
+      throw UsageError{"accuracy: unknown option " + quoted(arg)};
     } else {
       inputs.emplace_back(arg);
     }
@@ -636,7 +636,7 @@ int run_accuracy(int argc, char** argv) {
   } else {
     for (const std::string& f : inputs) {
       Scene s{fs::path(f).stem().string(), svg::load_svg(f), {}};
-      for (const std::string& w : s.doc.warnings) std::cerr << f << ":" << w << "\n";
+      for (const std::string& w : s.doc.warnings) std::cerr << printable(f, 1024) << ":" << w << "\n";
       downscale(s.doc, max_side);
       scenes.push_back(std::move(s));
     }

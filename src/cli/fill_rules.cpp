@@ -94,13 +94,13 @@ int run_fill_rules(int argc, char** argv) {
       winding = true;
     } else if (arg == "--aa") {
       const auto v = value();
-      if (!parse_anti_alias(v, aa)) throw UsageError{"--aa: unknown mode '" + std::string(v) + "'"};
+      if (!parse_anti_alias(v, aa)) throw UsageError{"--aa: unknown mode " + quoted(v)};
     } else if (arg == "--panel") {
       const std::string v(value());
       panel_size = std::atoi(v.c_str());
       if (panel_size < 32 || panel_size > 2048) throw UsageError{"--panel must be from 32 to 2048 pixels"};
     } else if (!arg.empty() && arg[0] == '-') {
-      throw UsageError{"fill-rules: unknown option '" + std::string(arg) + "'"};
+      throw UsageError{"fill-rules: unknown option " + quoted(arg)};
     } else if (input.empty()) {
       input = arg;
     } else {
@@ -111,7 +111,7 @@ int run_fill_rules(int argc, char** argv) {
   if (output.empty()) throw UsageError{"fill-rules: no output file (-o SHEET.png)"};
 
   const svg::Document doc = svg::load_svg(input);
-  for (const std::string& w : doc.warnings) std::cerr << input << ":" << w << "\n";
+  for (const std::string& w : doc.warnings) std::cerr << printable(input, 1024) << ":" << w << "\n";
   const double scale = static_cast<double>(panel_size) / std::max(doc.width, doc.height);
   const int pw = std::max(1, static_cast<int>(std::lround(doc.width * scale)));
   const int ph = std::max(1, static_cast<int>(std::lround(doc.height * scale)));

@@ -57,7 +57,7 @@ double parse_number(std::string_view flag, std::string_view text) {
   double v = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) {
-    throw UsageError{std::string(flag) + ": '" + std::string(text) + "' is not a number"};
+    throw UsageError{std::string(flag) + ": " + quoted(text) + " is not a number"};
   }
   return v;
 }
@@ -98,11 +98,11 @@ RenderArgs parse_render_args(int argc, char** argv) {
       a.quiet = true;
     } else if (arg == "--aa") {
       const auto v = r.value(arg);
-      if (!parse_anti_alias(v, a.settings.aa)) throw UsageError{"--aa: unknown mode '" + std::string(v) + "'"};
+      if (!parse_anti_alias(v, a.settings.aa)) throw UsageError{"--aa: unknown mode " + quoted(v)};
     } else if (arg == "--rule") {
       const auto v = r.value(arg);
       FillRule rule;
-      if (!parse_fill_rule(v, rule)) throw UsageError{"--rule: unknown fill rule '" + std::string(v) + "'"};
+      if (!parse_fill_rule(v, rule)) throw UsageError{"--rule: unknown fill rule " + quoted(v)};
       a.settings.rule_override = rule;
     } else if (arg == "--tolerance") {
       a.settings.tolerance = parse_number(arg, r.value(arg));
@@ -112,7 +112,7 @@ RenderArgs parse_render_args(int argc, char** argv) {
     } else if (arg == "--hairline") {
       const auto v = r.value(arg);
       HairlineMode mode;
-      if (!parse_hairline_mode(v, mode)) throw UsageError{"--hairline: unknown mode '" + std::string(v) + "'"};
+      if (!parse_hairline_mode(v, mode)) throw UsageError{"--hairline: unknown mode " + quoted(v)};
       a.settings.hairline = mode;
     } else if (arg == "--depth") {
       const double d = parse_number(arg, r.value(arg));
@@ -125,7 +125,7 @@ RenderArgs parse_render_args(int argc, char** argv) {
       } else {
         bool none = false;
         const auto c = svg::parse_color(v, none);
-        if (!c) throw UsageError{"--background: '" + std::string(v) + "' is not a colour"};
+        if (!c) throw UsageError{"--background: " + quoted(v) + " is not a colour"};
         a.background = *c;
       }
     } else if (arg == "--bench") {
@@ -133,7 +133,7 @@ RenderArgs parse_render_args(int argc, char** argv) {
       if (!(n >= 1 && n <= 1e6) || n != std::floor(n)) throw UsageError{"--bench needs a frame count from 1 to 1000000"};
       a.bench_frames = static_cast<int>(n);
     } else if (!arg.empty() && arg[0] == '-') {
-      throw UsageError{"unknown option '" + std::string(arg) + "'"};
+      throw UsageError{"unknown option " + quoted(arg)};
     } else if (a.input.empty()) {
       a.input = arg;
     } else {
@@ -182,7 +182,7 @@ int run_render(int argc, char** argv) {
   }
   svg::Document doc = svg::load_svg(a.input);
   if (!a.quiet) {
-    for (const std::string& w : doc.warnings) std::cerr << a.input << ":" << w << "\n";
+    for (const std::string& w : doc.warnings) std::cerr << printable(a.input, 1024) << ":" << w << "\n";
   }
   if (a.width > 0 || a.height > 0) {
     const auto [w, h] = svg::output_size(doc, a.width, a.height);
@@ -204,7 +204,7 @@ int run_demo(int argc, char** argv) {
     if (arg == "-o" || arg == "--output") {
       output = r.value(arg);
     } else {
-      throw UsageError{"demo: unknown argument '" + std::string(arg) + "'"};
+      throw UsageError{"demo: unknown argument " + quoted(arg)};
     }
   }
   const svg::Document doc = svg::parse_svg(demo_svg(), "<demo>");
@@ -239,13 +239,11 @@ int main(int argc, char** argv) {
     }
     throw cli::UsageError{"unknown command '" + std::string(command) + "'"};
   } catch (const cli::UsageError& e) {
-    std::cerr << "vraster: " << e.message << "\n" << cli::kUsage;
+    std::cerr << "vraster: " << printable(e.message, kMaxMessageBytes) << "\n" << cli::kUsage;
     return 2;
-  } catch (const Error& e) {
-    std::cerr << "vraster: " << e.what() << "\n";
-    return 2;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "vraster: out of memory\n";
+  } catch (...) {
+    // Everything else, std::filesystem errors included: a message and status 2, never std::terminate.
+    std::cerr << "vraster: " << describe_current_exception() << "\n";
     return 2;
   }
 }

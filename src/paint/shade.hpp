@@ -13,20 +13,15 @@
 
 namespace vraster::detail {
 
-/// One gradient stop, straight RGBA (opacity applied), kept for interpolation.
-struct StopF {
-  double offset;
-  float rgba[4];
-};
-
 template <class T>
 class Shader {
  public:
   /// Prepares `paint` for a target whose device pixels are reached from user space by `user_to_device`.
-  /// Returns false when the paint paints nothing (invisible, degenerate, singular transform).
+  /// Returns false when the paint paints nothing (invisible, degenerate, singular transform); the shader is then a
+  /// transparent constant.
   bool prepare(const Paint& paint, const Affine& user_to_device);
 
-  /// A single colour everywhere (solid paint, or a gradient with one stop): color() is all there is to shade.
+  /// A single colour everywhere (solid paint, or a gradient whose stops are all one colour): color() is all.
   bool is_constant() const { return constant_; }
   /// The constant premultiplied colour (is_constant() only).
   const T* color() const { return color_; }
@@ -34,30 +29,39 @@ class Shader {
   bool is_opaque() const { return opaque_; }
 
   /// Shades device pixels [x0, x0 + n) of row y (sampled at their centres) into out[0 .. 4n).
-  void shade(int y, int x0, int n, T* out) const;
+  void shade(int y, int x0, int n, T* out);
+
+  /// Gradients: the parameter t (before the extend mode) at paint-space point p; false where the paint is
+  /// transparent (a radial gradient's cone does not reach p).
+  bool gradient_t(Point p, double& t) const;
 
  private:
-  void shade_gradient(int y, int x0, int n, T* out) const;
-  void shade_pattern(int y, int x0, int n, T* out) const;
+  bool prepare_gradient(const Paint& paint);
   void build_lut();
+  double extend_t(double t) const;
+  /// Straight-interpolated, premultiplied colour at t in [0, 1], channels in [0, 1].
   void color_at(double t, float* rgba) const;
-  T* store(const float* rgba, T* out, int x, int y) const;
+  void shade_gradient(int y, int x0, int n, T* out);
+  void shade_pattern(int y, int x0, int n, T* out);
 
-  const Paint* paint_ = nullptr;
   Paint::Kind kind_ = Paint::Kind::Solid;
   bool constant_ = true, opaque_ = false, dither_ = false;
   T color_[4] = {0, 0, 0, 0};
   Affine to_paint_{};  // device -> paint space
   // Gradient geometry in paint space.
   Point p0_{}, p1_{};
-  double r0_ = 0, r1_ = 0, angle_ = 0;
-  // Radial: precomputed terms of the quadratic (see shade.cpp).
-  double cdx_ = 0, cdy_ = 0, dr_ = 0, a_ = 0;
+  double r0_ = 0, dr_ = 0, angle_ = 0;
+  Point d_{};            // linear: (p1 - p0) / |p1 - p0|^2; radial: c1 - c0
+  double a_ = 0;         // radial: |c1 - c0|^2 - (r1 - r0)^2
   Extend extend_ = Extend::Pad;
-  std::vector<StopF> stops_;
-  // 8-bit gradients without dithering: a table of packed premultiplied colours over t in [0, 1].
+  std::vector<double> offsets_;
+  std::vector<float> colors_;  // straight RGBA per stop, opacity applied
+  // 8-bit gradients without dithering: premultiplied colours at t = i / (kLutSize - 1), packed RGBA.
+  static constexpr int kLutSize = 1024;
   std::vector<std::uint32_t> lut_;
-  float opacity_ = 1;
+  std::vector<double> ts_;   // one row of gradient parameters (NaN: transparent), kept across calls
+  // Patterns.
+  const Paint* pattern_ = nullptr;
 };
 
 extern template class Shader<std::uint8_t>;

@@ -219,7 +219,8 @@ namespace {
 Path thin_centre_lines(const Path& path, const StrokeStyle& style, double user_tol) {
   std::vector<StrokePolyline> pieces, dashed;
   flatten_for_stroke(path, user_tol, pieces);
-  dash_polylines(pieces, normalize_dashes(style.dashes), style.dash_offset, dashed);
+  const bool dashed_ok = check_dashes(path, style.dashes) == DashVerdict::Dashed;
+  dash_polylines(pieces, dashed_ok ? normalize_dashes(style.dashes) : std::vector<double>{}, style.dash_offset, dashed);
   Path centre_lines;
   for (const StrokePolyline& pl : dashed) {
     if (pl.points.size() < 2) continue;

@@ -28,7 +28,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr int kMaxCurveSegments = 1 << 14;
 constexpr int kMaxArcSegments = 1 << 12;
-constexpr double kMaxDashes = 1 << 22;
 // Curves get extra points at parameter kTangentStep/n from each end, so the end segments point along the true
 // tangents (a miter joined to a chord instead would be off by up to half a segment's turn, times its length).
 constexpr double kTangentStep = 1e-3;
@@ -329,17 +328,59 @@ class Outliner {
 
 }  // namespace
 
-std::vector<double> normalize_dashes(const std::vector<double>& dashes) {
-  std::vector<double> p;
+namespace {
+
+/// The sum of a normalized pattern (an odd list counts twice), or 0 when an entry is negative or not finite or
+/// the sum is not finite and positive (a doubled 1e308 overflows).
+double pattern_total(const std::vector<double>& dashes) {
   double sum = 0;
   for (double d : dashes) {
-    if (!(d >= 0) || !std::isfinite(d)) return {};
+    if (!(d >= 0) || !std::isfinite(d)) return 0;
     sum += d;
   }
-  if (!(sum > 0) || !std::isfinite(sum)) return {};
-  p = dashes;
+  if (dashes.size() % 2 == 1) sum *= 2;
+  return sum > 0 && std::isfinite(sum) ? sum : 0;
+}
+
+/// Length of the control polygon of every contour (closing segments included): at least the arc length.
+double control_polygon_length(const Path& path) {
+  double total = 0;
+  Point start{}, last{};
+  const auto pts = path.points();
+  std::size_t i = 0;
+  for (Verb v : path.verbs()) {
+    const int n = v == Verb::Move ? 0 : v == Verb::Line ? 1 : v == Verb::Quad ? 2 : v == Verb::Cubic ? 3 : -1;
+    if (v == Verb::Move) {
+      start = last = pts[i++];
+    } else if (n < 0) {
+      total += length(start - last);
+      last = start;
+    } else {
+      for (int k = 0; k < n; ++k, ++i) {
+        total += length(pts[i] - last);
+        last = pts[i];
+      }
+    }
+  }
+  return total;
+}
+
+}  // namespace
+
+std::vector<double> normalize_dashes(const std::vector<double>& dashes) {
+  if (pattern_total(dashes) == 0) return {};
+  std::vector<double> p = dashes;
   if (p.size() % 2 == 1) p.insert(p.end(), dashes.begin(), dashes.end());
   return p;
+}
+
+DashVerdict check_dashes(const Path& path, const std::vector<double>& dashes) {
+  if (dashes.empty()) return DashVerdict::None;
+  const double total = pattern_total(dashes);
+  if (total == 0) return DashVerdict::Invalid;
+  const double elements = static_cast<double>(dashes.size() % 2 ? 2 * dashes.size() : dashes.size());
+  if (!(control_polygon_length(path) / total * elements <= kMaxDashElements)) return DashVerdict::TooMany;
+  return DashVerdict::Dashed;
 }
 
 bool parse_line_cap(std::string_view name, LineCap& out) {
@@ -370,14 +411,18 @@ void dash_polylines(const std::vector<StrokePolyline>& in, const std::vector<dou
   }
   double total = 0;
   for (double d : pattern) total += d;
-  // Bounded work: a pattern that would cut the paths into more than kMaxDashes pieces is ignored (solid).
+  if (!(total > 0) || !std::isfinite(total)) {  // not a pattern dash_polylines can walk: solid
+    out.insert(out.end(), in.begin(), in.end());
+    return;
+  }
+  // Bounded work: a pattern that would cut the paths into more than kMaxDashElements pieces is ignored (solid).
   double path_length = 0;
   for (const StrokePolyline& pl : in) {
     const std::size_t m = pl.points.size();
     for (std::size_t i = 0; i + 1 < m; ++i) path_length += length(pl.points[i + 1] - pl.points[i]);
     if (pl.closed && m > 1) path_length += length(pl.points[0] - pl.points[m - 1]);
   }
-  if (!(path_length / total * static_cast<double>(pattern.size()) <= kMaxDashes)) {
+  if (!(path_length / total * static_cast<double>(pattern.size()) <= kMaxDashElements)) {
     out.insert(out.end(), in.begin(), in.end());
     return;
   }
@@ -386,11 +431,15 @@ void dash_polylines(const std::vector<StrokePolyline>& in, const std::vector<dou
   if (off < 0) off += total;
   // The element the offset falls in: element k covers [start_k, start_k + len_k); a zero-length element at
   // exactly the offset is kept (it draws a dot).
+  if (!(off < total)) off = 0;  // fmod's result rounded up to the total
   std::size_t idx0 = 0;
-  while (off > pattern[idx0] || (off == pattern[idx0] && pattern[idx0] > 0)) {
+  // At most one pass over the pattern (off < total); the count guards against round-off at the last element.
+  for (std::size_t steps = 0; steps < pattern.size() && (off > pattern[idx0] || (off == pattern[idx0] && pattern[idx0] > 0));
+       ++steps) {
     off -= pattern[idx0];
     idx0 = (idx0 + 1) % pattern.size();
   }
+  off = std::min(off, pattern[idx0]);
   const double rem0 = pattern[idx0] - off;
 
   for (const StrokePolyline& pl : in) {
@@ -487,7 +536,8 @@ Path stroke_to_path(const Path& path, const StrokeStyle& style, double tolerance
   if (!(tolerance > 0) || !std::isfinite(tolerance)) tolerance = kDefaultTolerance;
   std::vector<StrokePolyline> pieces;
   flatten_impl(path, tolerance / 2, nullptr, pieces);
-  const std::vector<double> pattern = normalize_dashes(style.dashes);
+  const std::vector<double> pattern =
+      check_dashes(path, style.dashes) == DashVerdict::Dashed ? normalize_dashes(style.dashes) : std::vector<double>{};
   if (!pattern.empty()) {
     std::vector<StrokePolyline> dashed;
     dash_polylines(pieces, pattern, style.dash_offset, dashed);

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "scan.hpp"
+#include "xml_check.hpp"
 #include "svg_subset/svg.hpp"
 
 namespace vraster::svg {
@@ -40,16 +41,7 @@ using detail::trim;
 
 constexpr int kMaxDepth = 256;
 constexpr std::size_t kMaxElements = 1'000'000;
-
-/// A value for a message: quoted, and cut short when long (path data can be megabytes).
-std::string quote(std::string_view value) {
-  constexpr std::size_t kMax = 40;
-  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) about "literal" + std::string&&.
-  std::string out = "'";
-  out += value.substr(0, kMax);
-  out += value.size() <= kMax ? "'" : "...'";
-  return out;
-}
+constexpr std::size_t kMaxWarningsPerKind = 20;
 
 /// Maps byte offsets of the source text to 1-based line and column (column counts bytes).
 class LineIndex {
@@ -153,16 +145,49 @@ class Builder {
       const auto offset = static_cast<std::size_t>(std::max<std::ptrdiff_t>(result.offset, 0));
       fail(std::min(offset, text_.size()), std::string("malformed XML: ") + result.description());
     }
+    if (const std::optional<detail::XmlProblem> problem = detail::find_xml_problem(text_))
+      fail(problem->offset, "malformed XML: " + problem->message);
+    check_unique_attributes(xml);
     const pugi::xml_node root = xml.document_element();
     if (std::string_view(root.name()) != "svg") {
-      fail(element_offset(root), "the root element is <" + std::string(root.name()) + ">, expected <svg>");
+      fail(element_offset(root), "the root element is <" + printable(root.name()) + ">, expected <svg>");
     }
+    doc_.file = file_;
     set_up_viewport(root);
     element(root, Style{}, Affine{}, 1);
+    finish_warnings();
     return std::move(doc_);
   }
 
  private:
+  /// XML: an attribute name appears at most once in a start tag. Checks every element, drawn or not, walking
+  /// the tree without recursion; names are sorted when an element has many, so the cost stays n log n.
+  void check_unique_attributes(const pugi::xml_document& xml) const {
+    std::vector<pugi::xml_attribute> attrs;
+    pugi::xml_node node = xml.first_child();
+    while (node) {
+      if (node.type() == pugi::node_element) {
+        attrs.assign(node.attributes_begin(), node.attributes_end());
+        const auto by_name = [](pugi::xml_attribute a, pugi::xml_attribute b) {
+          return std::strcmp(a.name(), b.name()) < 0;
+        };
+        std::stable_sort(attrs.begin(), attrs.end(), by_name);
+        for (std::size_t i = 1; i < attrs.size(); ++i) {
+          if (std::strcmp(attrs[i - 1].name(), attrs[i].name()) == 0) {
+            fail(offset_of(attrs[i].name()),
+                 "malformed XML: duplicate attribute " + quoted(attrs[i].name()) + " on <" + printable(node.name()) + ">");
+          }
+        }
+      }
+      if (node.first_child()) {
+        node = node.first_child();
+        continue;
+      }
+      while (node && !node.next_sibling()) node = node.parent();
+      if (node) node = node.next_sibling();
+    }
+  }
+
   // ---- positions and messages ----
 
   [[noreturn]] void fail(std::size_t offset, const std::string& message) const {
@@ -170,9 +195,29 @@ class Builder {
     throw ParseError(file_, line, column, message);
   }
 
-  void warn(std::size_t offset, const std::string& message) {
+  /// Records a warning of a kind (a short plural noun phrase, "unsupported elements"). Only the first
+  /// kMaxWarningsPerKind of a kind are kept; the rest are counted and summarised at the end (finish_warnings).
+  void warn(std::string_view kind, std::size_t offset, const std::string& message) {
+    auto it = std::find_if(warning_counts_.begin(), warning_counts_.end(),
+                           [&](const WarningCount& c) { return c.kind == kind; });
+    if (it == warning_counts_.end()) it = warning_counts_.insert(warning_counts_.end(), WarningCount{kind, 0, 0});
+    if (++it->count > kMaxWarningsPerKind) {
+      if (it->count == kMaxWarningsPerKind + 1) it->first_dropped = offset;
+      return;
+    }
     const auto [line, column] = lines_.position(offset);
     doc_.warnings.push_back(std::to_string(line) + ":" + std::to_string(column) + ": " + message);
+  }
+
+  /// Appends one line per kind of warning that was cut short: "... and K more (kind), the first at L:C".
+  void finish_warnings() {
+    for (const WarningCount& c : warning_counts_) {
+      if (c.count <= kMaxWarningsPerKind) continue;
+      const auto [line, column] = lines_.position(c.first_dropped);
+      doc_.warnings.push_back(std::to_string(line) + ":" + std::to_string(column) + ": ... and " +
+                              std::to_string(c.count - kMaxWarningsPerKind) + " more warnings about " +
+                              std::string(c.kind) + " (not shown)");
+    }
   }
 
   bool in_buffer(const char* p) const { return p >= buffer_.data() && p <= buffer_.data() + buffer_.size(); }
@@ -184,29 +229,50 @@ class Builder {
     return name > 0 ? name - 1 : 0;
   }
 
-  /// Source offset of byte `decoded` of an attribute's value. pugixml decodes values in place (entities, CR LF
-  /// -> one space), which can only shorten them, so the value starts where it did; past the first entity the
-  /// source has to be walked to map decoded bytes back to source bytes.
-  std::size_t value_offset(pugi::xml_attribute attr, std::size_t decoded = 0) const {
-    if (!in_buffer(attr.value())) return offset_of(attr.name());
-    std::size_t raw = offset_of(attr.value());
-    std::size_t done = 0;
-    while (done < decoded && raw < text_.size()) {
-      const char c = text_[raw];
-      if (c == '&') {
-        const std::size_t semicolon = text_.find(';', raw);
-        if (semicolon != std::string_view::npos && semicolon - raw <= 12) {
-          done += entity_length(text_.substr(raw, semicolon - raw + 1));
-          raw = semicolon + 1;
-          continue;
-        }
-      } else if (c == '\r' && raw + 1 < text_.size() && text_[raw + 1] == '\n') {
-        ++raw;
-      }
-      ++raw;
-      ++done;
+  /// Maps decoded byte offsets of one attribute value to source offsets. pugixml decodes values in place
+  /// (entities, CR LF -> one space), which can only shorten them, so the value starts where it did; past the
+  /// first entity the source has to be walked to map decoded bytes back to source bytes. The walk resumes
+  /// where the last call stopped, so increasing offsets (the declarations of a style attribute) cost one pass.
+  class ValueOffsets {
+   public:
+    ValueOffsets(const Builder& b, pugi::xml_attribute attr) : text_(b.text_) {
+      start_ = b.in_buffer(attr.value()) ? b.offset_of(attr.value()) : b.offset_of(attr.name());
+      known_ = b.in_buffer(attr.value());
+      raw_ = start_;
     }
-    return raw;
+    std::size_t at(std::size_t decoded) {
+      if (!known_) return start_;
+      if (decoded < done_) {
+        raw_ = start_;
+        done_ = 0;
+      }
+      while (done_ < decoded && raw_ < text_.size()) {
+        const char c = text_[raw_];
+        if (c == '&') {
+          const std::size_t semicolon = text_.substr(raw_, 13).find(';');
+          if (semicolon != std::string_view::npos) {
+            done_ += entity_length(text_.substr(raw_, semicolon + 1));
+            raw_ += semicolon + 1;
+            continue;
+          }
+        } else if (c == '\r' && raw_ + 1 < text_.size() && text_[raw_ + 1] == '\n') {
+          ++raw_;
+        }
+        ++raw_;
+        ++done_;
+      }
+      return raw_;
+    }
+
+   private:
+    std::string_view text_;
+    std::size_t start_ = 0, raw_ = 0, done_ = 0;
+    bool known_ = false;
+  };
+
+  /// Source offset of byte `decoded` of an attribute's value.
+  std::size_t value_offset(pugi::xml_attribute attr, std::size_t decoded = 0) const {
+    return ValueOffsets(*this, attr).at(decoded);
   }
 
   /// How many bytes pugixml decodes an entity reference ("&amp;", "&#x4e00;") into.
@@ -259,7 +325,7 @@ class Builder {
     double out = 0;
     if (!parse_length(v, axis, out)) {
       fail(value_offset(attr, static_cast<std::size_t>(v.data() - raw.data())),
-           std::string("invalid length for ") + name + ": " + quote(v));
+           std::string("invalid length for ") + name + ": " + quoted(v));
     }
     return out;
   }
@@ -274,7 +340,7 @@ class Builder {
       }
       if (pos == v.size()) return static_cast<float>(std::clamp(value, 0.0, 1.0));
     }
-    fail(offset, "invalid " + std::string(property) + " " + quote(v) + " (expected a number from 0 to 1)");
+    fail(offset, "invalid " + std::string(property) + " " + quoted(v) + " (expected a number from 0 to 1)");
   }
 
   Paint parse_paint(std::string_view v, std::size_t offset, std::string_view property) {
@@ -285,24 +351,24 @@ class Builder {
       if (close == std::string_view::npos) fail(offset, "invalid " + std::string(property) + ": unterminated url(");
       const std::string_view fallback = trim(v.substr(close + 1));
       if (fallback.empty()) {
-        warn(offset, "paint servers (" + std::string(v.substr(0, close + 1)) + ") are not supported yet; " +
+        warn("paint servers", offset, "paint servers (" + printable(v.substr(0, close + 1)) + ") are not supported yet; " +
                          std::string(property) + " treated as none");
         return Paint{PaintKind::None, {}};
       }
-      warn(offset, "paint servers are not supported yet; using the fallback colour " + quote(fallback));
+      warn("paint servers", offset, "paint servers are not supported yet; using the fallback colour " + quoted(fallback));
       return parse_paint(fallback, offset + static_cast<std::size_t>(fallback.data() - v.data()), property);
     }
     bool none = false;
     const std::optional<Color> color = parse_color(v, none);
     if (none) return Paint{PaintKind::None, {}};
-    if (!color) fail(offset, "invalid colour for " + std::string(property) + ": " + quote(v));
+    if (!color) fail(offset, "invalid colour for " + std::string(property) + ": " + quoted(v));
     return Paint{PaintKind::Solid, *color};
   }
 
   /// A length property value (units and percentages as for attributes; percentages of the normalized diagonal).
   double length_property(std::string_view v, std::size_t offset, std::string_view property) const {
     double out = 0;
-    if (!parse_length(v, Axis::Other, out)) fail(offset, "invalid length for " + std::string(property) + ": " + quote(v));
+    if (!parse_length(v, Axis::Other, out)) fail(offset, "invalid length for " + std::string(property) + ": " + quoted(v));
     return out;
   }
 
@@ -318,14 +384,14 @@ class Builder {
       while (pos < v.size() && !detail::is_wsp(v[pos]) && v[pos] != ',') ++pos;
       double length = 0;
       if (pos == start || !parse_length(v.substr(start, pos - start), Axis::Other, length)) {
-        fail(offset + start, "invalid stroke-dasharray " + quote(v) + " (expected none or a list of lengths)");
+        fail(offset + start, "invalid stroke-dasharray " + quoted(v) + " (expected none or a list of lengths)");
       }
       dashes.push_back(length);
       if (detail::skip_comma_wsp(v, pos) && pos == v.size())
-        fail(offset + pos, "invalid stroke-dasharray " + quote(v) + ": expected a length after ','");
+        fail(offset + pos, "invalid stroke-dasharray " + quoted(v) + ": expected a length after ','");
     }
     if (std::any_of(dashes.begin(), dashes.end(), [](double d) { return d < 0; })) {
-      warn(offset, "negative value in stroke-dasharray " + quote(v) + ", the stroke is drawn solid");
+      warn("dash patterns", offset, "negative value in stroke-dasharray " + quoted(v) + ", the stroke is drawn solid");
       return {};
     }
     return dashes;
@@ -350,7 +416,7 @@ class Builder {
         else if (v == "evenodd")
           style.fill_rule = FillRule::EvenOdd;
         else
-          fail(offset, "invalid fill-rule " + quote(v) + " (expected nonzero or evenodd)");
+          fail(offset, "invalid fill-rule " + quoted(v) + " (expected nonzero or evenodd)");
         break;
       case Property::Stroke:
         style.stroke = parse_paint(v, offset, "stroke");
@@ -361,30 +427,30 @@ class Builder {
       case Property::StrokeWidth: {
         const double width = length_property(v, offset, "stroke-width");
         if (width < 0)
-          warn(offset, "negative stroke-width " + quote(v) + ", ignored");
+          warn("stroke widths", offset, "negative stroke-width " + quoted(v) + ", ignored");
         else
           style.stroke_style.width = width;
         break;
       }
       case Property::StrokeLinecap:
         if (!parse_line_cap(v, style.stroke_style.cap))
-          fail(offset, "invalid stroke-linecap " + quote(v) + " (expected butt, round or square)");
+          fail(offset, "invalid stroke-linecap " + quoted(v) + " (expected butt, round or square)");
         break;
       case Property::StrokeLinejoin:
         if (v == "miter-clip" || v == "arcs") {
-          warn(offset, "stroke-linejoin " + quote(v) + " is not supported yet, using miter");
+          warn("line joins", offset, "stroke-linejoin " + quoted(v) + " is not supported yet, using miter");
           style.stroke_style.join = LineJoin::Miter;
         } else if (!parse_line_join(v, style.stroke_style.join)) {
-          fail(offset, "invalid stroke-linejoin " + quote(v) + " (expected miter, round or bevel)");
+          fail(offset, "invalid stroke-linejoin " + quoted(v) + " (expected miter, round or bevel)");
         }
         break;
       case Property::StrokeMiterlimit: {
         std::size_t pos = 0;
         double limit = 0;
         if (scan_number(v, pos, limit) != NumberScan::Ok || pos != v.size())
-          fail(offset, "invalid stroke-miterlimit " + quote(v) + " (expected a number)");
+          fail(offset, "invalid stroke-miterlimit " + quoted(v) + " (expected a number)");
         if (limit < 1)
-          warn(offset, "stroke-miterlimit " + quote(v) + " is below 1, ignored");
+          warn("miter limits", offset, "stroke-miterlimit " + quoted(v) + " is below 1, ignored");
         else
           style.stroke_style.miter_limit = limit;
         break;
@@ -402,7 +468,7 @@ class Builder {
         if (iequals(v, "currentColor")) break;  // same as inherit
         bool none = false;
         const std::optional<Color> color = parse_color(v, none);
-        if (!color) fail(offset, "invalid colour for color: " + quote(v));
+        if (!color) fail(offset, "invalid colour for color: " + quoted(v));
         style.current_color = *color;
         break;
       }
@@ -415,12 +481,12 @@ class Builder {
         else if (v == "hidden" || v == "collapse")
           style.visible = false;
         else
-          warn(offset, "unknown visibility " + quote(v) + ", ignored");
+          warn("visibility", offset, "unknown visibility " + quoted(v) + ", ignored");
         break;
       case Property::Unsupported:
         if (v != "none" && std::find(warned_once_.begin(), warned_once_.end(), name) == warned_once_.end()) {
           warned_once_.emplace_back(name);
-          warn(offset, std::string(name) + " is not supported yet, ignored (reported once)");
+          warn("unsupported properties", offset, printable(name) + " is not supported yet, ignored (reported once)");
         }
         break;
       case Property::Unknown:
@@ -445,6 +511,7 @@ class Builder {
     if (!style_attr) return displayed;
     // "name: value; name: value" (CSS comments and escapes are not supported).
     const std::string_view css = style_attr.value();
+    ValueOffsets offsets(*this, style_attr);
     std::size_t pos = 0;
     while (pos < css.size()) {
       std::size_t end = css.find(';', pos);
@@ -453,7 +520,7 @@ class Builder {
       const std::size_t colon = declaration.find(':');
       if (colon == std::string_view::npos) {
         if (!trim(declaration).empty()) {
-          warn(value_offset(style_attr, pos), "malformed style declaration " + quote(trim(declaration)) + ", ignored");
+          warn("style declarations", offsets.at(pos), "malformed style declaration " + quoted(trim(declaration)) + ", ignored");
         }
       } else {
         const std::string_view name = trim(declaration.substr(0, colon));
@@ -462,8 +529,7 @@ class Builder {
         const Property property = property_of(name, true);
         if (property != Property::Unknown) {
           displayed &=
-              apply(property, name, v, value_offset(style_attr, static_cast<std::size_t>(v.data() - css.data())), style,
-                    own_opacity);
+              apply(property, name, v, offsets.at(static_cast<std::size_t>(v.data() - css.data())), style, own_opacity);
         }
       }
       pos = end + 1;
@@ -482,13 +548,13 @@ class Builder {
       if (i > 0) detail::skip_comma_wsp(s, pos);
       if (scan_number(s, pos, v[i]) != NumberScan::Ok) {
         fail(value_offset(attr, pos),
-             "invalid viewBox " + quote(s) + " (expected four numbers: min-x min-y width height)");
+             "invalid viewBox " + quoted(s) + " (expected four numbers: min-x min-y width height)");
       }
     }
     detail::skip_wsp(s, pos);
     if (pos != s.size())
-      fail(value_offset(attr, pos), "invalid viewBox " + quote(s) + ": unexpected text after four numbers");
-    if (!(v[2] > 0 && v[3] > 0)) fail(value_offset(attr), "viewBox width and height must be positive, got " + quote(s));
+      fail(value_offset(attr, pos), "invalid viewBox " + quoted(s) + ": unexpected text after four numbers");
+    if (!(v[2] > 0 && v[3] > 0)) fail(value_offset(attr), "viewBox width and height must be positive, got " + quoted(s));
     return ViewBox{v[0], v[1], v[2], v[3]};
   }
 
@@ -501,13 +567,13 @@ class Builder {
     const std::size_t offset = value_offset(attr, static_cast<std::size_t>(v.data() - raw.data()));
     if (v == "auto") return std::nullopt;
     if (!v.empty() && v.back() == '%') {
-      warn(offset, std::string(name) + " " + quote(v) +
+      warn("root sizes", offset, std::string(name) + " " + quoted(v) +
                        " is relative to an enclosing viewport, which a file does not have; using the viewBox size");
       return std::nullopt;
     }
     double value = 0;
-    if (!parse_length(v, Axis::Other, value)) fail(offset, std::string("invalid ") + name + " " + quote(v));
-    if (!(value > 0)) fail(offset, std::string(name) + " must be positive, got " + quote(v));
+    if (!parse_length(v, Axis::Other, value)) fail(offset, std::string("invalid ") + name + " " + quoted(v));
+    if (!(value > 0)) fail(offset, std::string(name) + " must be positive, got " + quoted(v));
     return value;
   }
 
@@ -550,7 +616,7 @@ class Builder {
         valid = false;
       if (!trim(s).empty()) valid = false;
       if (!valid) {
-        warn(value_offset(aspect), "invalid preserveAspectRatio " + quote(aspect.value()) + ", using xMidYMid meet");
+        warn("preserveAspectRatio", value_offset(aspect), "invalid preserveAspectRatio " + quoted(aspect.value()) + ", using xMidYMid meet");
         align_x = align_y = 0.5;
         none = slice = false;
       }
@@ -635,7 +701,7 @@ class Builder {
       const double w = get("width", Axis::X).value_or(0), h = get("height", Axis::Y).value_or(0);
       std::optional<double> rx = get("rx", Axis::X), ry = get("ry", Axis::Y);
       if (w < 0 || h < 0) {
-        warn(at, "<rect> with a negative width or height, ignored");
+        warn("negative sizes", at, "<rect> with a negative width or height, ignored");
         return path;
       }
       if (rx && *rx < 0) rx.reset();  // negative radii mean "auto"
@@ -662,7 +728,7 @@ class Builder {
         if (!ry) ry = rx;
       }
       if (rx.value_or(0) < 0 || ry.value_or(0) < 0) {
-        warn(at, "<" + std::string(name) + "> with a negative radius, ignored");
+        warn("negative sizes", at, "<" + std::string(name) + "> with a negative radius, ignored");
         return path;
       }
       if (rx.value_or(0) > 0 && ry.value_or(0) > 0) build(at, [&] { path.add_ellipse(c, *rx, *ry); });
@@ -702,9 +768,10 @@ class Builder {
   }
 
   /// Emits the fill (unless `line`: a <line> encloses no area), then the stroke of a shape.
-  void add_shape(Path&& path, bool line, const Style& style, const Affine& ctm) {
+  void add_shape(Path&& path, bool line, const Style& style, const Affine& ctm, std::size_t at) {
     const auto verbs = path.verbs();
     if (std::all_of(verbs.begin(), verbs.end(), [](Verb v) { return v == Verb::Move; })) return;  // nothing drawn
+    const auto [source_line, source_column] = lines_.position(at);
     const std::optional<Color> fill = line ? std::nullopt : paint_color(style.fill, style.fill_opacity, style);
     const std::optional<Color> stroke =
         style.stroke_style.width > 0 ? paint_color(style.stroke, style.stroke_opacity, style) : std::nullopt;
@@ -718,6 +785,8 @@ class Builder {
       item.transform = ctm;
       item.color = *fill;
       item.rule = style.fill_rule;
+      item.line = source_line;
+      item.column = source_column;
       doc_.items.push_back(std::move(item));
     }
     if (stroke) {
@@ -727,7 +796,27 @@ class Builder {
       item.transform = ctm;
       item.color = *stroke;
       item.stroke = style.stroke_style;
+      item.line = source_line;
+      item.column = source_column;
+      warn_about_dashes(item, at);
       doc_.items.push_back(std::move(item));
+    }
+  }
+
+  /// Says why a dashed stroke is drawn solid (the stroker decides the same way, from the same check).
+  void warn_about_dashes(const DrawItem& item, std::size_t at) {
+    switch (check_dashes(item.path, item.stroke.dashes)) {
+      case DashVerdict::Invalid:
+        warn("dash patterns", at, "stroke-dasharray sums to zero or overflows, the stroke is drawn solid");
+        break;
+      case DashVerdict::TooMany:
+        warn("dash patterns", at,
+             "stroke-dasharray would cut this path into more than " + std::to_string(std::lround(kMaxDashElements)) +
+                 " dashes and gaps (the limit), the stroke is drawn solid");
+        break;
+      case DashVerdict::None:
+      case DashVerdict::Dashed:
+        break;
     }
   }
 
@@ -749,7 +838,7 @@ class Builder {
     const bool shape = name == "path" || name == "rect" || name == "circle" || name == "ellipse" || name == "line" ||
                        name == "polyline" || name == "polygon";
     if (!container && !shape) {
-      warn(at, "element <" + std::string(name) + "> is not supported yet, ignored");
+      warn("unsupported elements", at, "element <" + printable(name) + "> is not supported yet, ignored");
       return;
     }
 
@@ -760,7 +849,7 @@ class Builder {
 
     Affine own;
     if (const pugi::xml_attribute t = node.attribute("transform")) {
-      if (!parse_transform(t.value(), own)) fail(value_offset(t), "invalid transform " + quote(t.value()));
+      if (!parse_transform(t.value(), own)) fail(value_offset(t), "invalid transform " + quoted(t.value()));
     }
     // The root's transform applies in the viewport, outside its viewBox mapping (SVG 2).
     const Affine ctm = root ? own * viewport_ : parent_ctm * own;
@@ -768,7 +857,7 @@ class Builder {
 
     if (container) {
       if (own_opacity < 1 && node.first_child()) {
-        warn(at, "group opacity is approximated: opacity on <" + std::string(name) +
+        warn("group opacity", at, "group opacity is approximated: opacity on <" + std::string(name) +
                      "> is multiplied into each child's alpha (overlapping children differ from a browser)");
       }
       for (const pugi::xml_node child : node.children()) {
@@ -776,7 +865,7 @@ class Builder {
       }
       return;
     }
-    add_shape(shape_path(node, name), name == "line", style, ctm);
+    add_shape(shape_path(node, name), name == "line", style, ctm, at);
   }
 
   std::string_view text_;
@@ -788,6 +877,12 @@ class Builder {
   double percent_width_ = 0, percent_height_ = 0;  // what percentages of lengths refer to
   std::size_t element_count_ = 0;
   std::vector<std::string> warned_once_;
+  struct WarningCount {
+    std::string_view kind;  // always a string literal
+    std::size_t count;
+    std::size_t first_dropped;
+  };
+  std::vector<WarningCount> warning_counts_;
 };
 
 }  // namespace

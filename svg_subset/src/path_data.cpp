@@ -124,7 +124,7 @@ class PathDataParser {
       case NumberScan::Ok:
         return value;
       case NumberScan::OutOfRange:
-        fail(start, "number out of range: " + std::string(d_.substr(start, pos_ - start)));
+        fail(start, "number out of range: " + printable(d_.substr(start, pos_ - start)));
       case NumberScan::NotANumber:
         break;
     }

@@ -27,8 +27,8 @@ std::vector<double> normalized_dashes(const std::vector<double>& dashes) {
 
 /// The centre lines of a stroke for hairline drawing: the path itself, or its dashes (cut in user space).
 Path hairline_centre_lines(const DrawItem& item, double device_tolerance) {
+  if (check_dashes(item.path, item.stroke.dashes) != DashVerdict::Dashed) return item.path;
   const std::vector<double> pattern = normalized_dashes(item.stroke.dashes);
-  if (pattern.empty()) return item.path;
   std::vector<StrokePolyline> pieces, dashed;
   flatten_for_stroke(item.path, user_tolerance(item.transform, device_tolerance), pieces);
   dash_polylines(pieces, pattern, item.stroke.dash_offset, dashed);
@@ -85,14 +85,23 @@ void scale_to(Document& doc, int width, int height) {
 template <class T>
 void render(const Document& doc, BasicImage<T>& image, const RenderSettings& settings, Renderer& renderer) {
   for (const DrawItem& item : doc.items) {
-    if (item.is_fill()) {
-      const FillOptions options{settings.rule_override.value_or(item.rule), settings.aa, settings.tolerance};
-      renderer.fill(image, item.path, item.transform, item.color, options);
-    } else if (settings.hairline) {
-      draw_hairline(image, item, *settings.hairline, settings.tolerance);
-    } else {
-      const StrokeRenderOptions options{settings.aa, settings.tolerance, HairlineMode::Analytic, &renderer};
-      stroke_path(image, item.path, item.transform, item.stroke, item.color, options);
+    try {
+      if (item.is_fill()) {
+        const FillOptions options{settings.rule_override.value_or(item.rule), settings.aa, settings.tolerance};
+        renderer.fill(image, item.path, item.transform, item.color, options);
+      } else if (settings.hairline) {
+        draw_hairline(image, item, *settings.hairline, settings.tolerance);
+      } else {
+        const StrokeRenderOptions options{settings.aa, settings.tolerance, HairlineMode::Analytic, &renderer};
+        stroke_path(image, item.path, item.transform, item.stroke, item.color, options);
+      }
+    } catch (const ParseError&) {
+      throw;
+    } catch (const Error& e) {
+      // A limit of the core (work or memory per draw call): the message names the element.
+      throw ParseError(doc.file, item.line, item.column,
+                       std::string("cannot draw the ") + (item.is_fill() ? "fill" : "stroke") + " of this element: " +
+                           e.what());
     }
   }
 }

@@ -178,35 +178,101 @@ Rgba reference_gradient_color(const Paint& paint, double t) {
   return {clamp01(c.r) * alpha, clamp01(c.g) * alpha, clamp01(c.b) * alpha, alpha};
 }
 
-Rgba reference_paint(const Paint& paint, const Affine& user_to_device, double x, double y) {
-  if (paint.kind() == Paint::Kind::Solid) {
-    const Color c = paint.color();
-    const double a = clamp01(c.a) * paint.opacity();
-    return {clamp01(c.r) * a, clamp01(c.g) * a, clamp01(c.b) * a, a};
+namespace {
+
+// Texel index along one axis under an extend mode; -1 for "transparent" (Extend::None outside the tile).
+long texel_index(long i, long size, Extend extend) {
+  switch (extend) {
+    case Extend::None: return i >= 0 && i < size ? i : -1;
+    case Extend::Pad: return std::min(size - 1, std::max(0L, i));
+    case Extend::Repeat: return ((i % size) + size) % size;
+    case Extend::Reflect: {
+      const long period = 2 * size;
+      const long m = ((i % period) + period) % period;
+      return m < size ? m : period - 1 - m;
+    }
   }
+  return -1;
+}
+
+Rgba texel(const Paint& paint, long i, long j) {
+  const bool wide = paint.image16() != nullptr;
+  const long w = wide ? paint.image16()->width : paint.image8()->width;
+  const long h = wide ? paint.image16()->height : paint.image8()->height;
+  const long x = texel_index(i, w, paint.extend_x()), y = texel_index(j, h, paint.extend_y());
+  if (x < 0 || y < 0) return {0, 0, 0, 0};
+  Rgba r;
+  for (std::size_t c = 0; c < 4; ++c) {
+    r[c] = wide ? paint.image16()->pixel(static_cast<int>(x), static_cast<int>(y))[c] / 65535.0
+                : paint.image8()->pixel(static_cast<int>(x), static_cast<int>(y))[c] / 255.0;
+  }
+  return r;
+}
+
+// Catmull-Rom cubic (B = 0, C = 1/2), the interpolating cubic.
+double catmull_rom(double x) {
+  x = std::abs(x);
+  if (x < 1) return (1.5 * x - 2.5) * x * x + 1;
+  if (x < 2) return ((-0.5 * x + 2.5) * x - 4) * x + 2;
+  return 0;
+}
+
+}  // namespace
+
+Rgba reference_pattern(const Paint& paint, const Affine& user_to_device, double x, double y) {
   const Affine m = user_to_device * paint.transform();
-  if (!m.invertible()) return {0, 0, 0, 0};
+  if (!m.invertible() || (!paint.image8() && !paint.image16())) return {0, 0, 0, 0};
+  const Point p = m.inverse().apply({x, y});
+  Rgba out{0, 0, 0, 0};
+  if (paint.filter() == ImageFilter::Nearest) {
+    out = texel(paint, static_cast<long>(std::floor(p.x)), static_cast<long>(std::floor(p.y)));
+  } else {
+    // Texel centres are at i + 0.5: sample relative to them.
+    const double u = p.x - 0.5, v = p.y - 0.5;
+    const long i0 = static_cast<long>(std::floor(u)), j0 = static_cast<long>(std::floor(v));
+    const double fx = u - static_cast<double>(i0), fy = v - static_cast<double>(j0);
+    const bool cubic = paint.filter() == ImageFilter::Bicubic;
+    const long lo = cubic ? -1 : 0, hi = cubic ? 2 : 1;
+    for (long j = lo; j <= hi; ++j) {
+      const double wy = cubic ? catmull_rom(static_cast<double>(j) - fy) : (j == 0 ? 1 - fy : fy);
+      for (long i = lo; i <= hi; ++i) {
+        const double wx = cubic ? catmull_rom(static_cast<double>(i) - fx) : (i == 0 ? 1 - fx : fx);
+        const Rgba t = texel(paint, i0 + i, j0 + j);
+        for (std::size_t c = 0; c < 4; ++c) out[c] += wx * wy * t[c];
+      }
+    }
+    out[3] = clamp01(out[3]);
+    for (std::size_t c = 0; c < 3; ++c) out[c] = std::min(out[3], std::max(0.0, out[c]));
+  }
+  const double o = paint.opacity();
+  for (double& c : out) c *= o;
+  return out;
+}
+
+bool reference_gradient_t(const Paint& paint, const Affine& user_to_device, double x, double y, double& t) {
+  const Affine m = user_to_device * paint.transform();
+  if (!m.invertible()) return false;
   const Point p = m.inverse().apply({x, y});
   switch (paint.kind()) {
     case Paint::Kind::Linear: {
       const Point d = paint.p1() - paint.p0();
       const double len2 = dot(d, d);
-      if (len2 == 0) return {0, 0, 0, 0};
-      return reference_gradient_color(paint, dot(p - paint.p0(), d) / len2);
+      if (len2 == 0) return false;
+      t = dot(p - paint.p0(), d) / len2;
+      return true;
     }
     case Paint::Kind::Radial: {
       const Point c0 = paint.p0(), c1 = paint.p1();
       const double r0 = paint.r0(), r1 = paint.r1();
-      if (c0 == c1 && r0 == r1) return {0, 0, 0, 0};
+      if (c0 == c1 && r0 == r1) return false;
       // |p - c(w)| = r(w) with c(w) = c0 + w (c1 - c0), r(w) = r0 + w (r1 - r0): a w^2 - 2 b w + c = 0.
       const Point cd = c1 - c0, pd = p - c0;
       const double dr = r1 - r0;
       const double a = dot(cd, cd) - dr * dr, b = dot(pd, cd) + r0 * dr, c = dot(pd, pd) - r0 * r0;
-      double best = -INFINITY;
       bool found = false;
       auto consider = [&](double w) {
-        if (std::isfinite(w) && r0 + w * dr >= 0 && (!found || w > best)) {
-          best = w;
+        if (std::isfinite(w) && r0 + w * dr >= 0 && (!found || w > t)) {
+          t = w;
           found = true;
         }
       };
@@ -220,17 +286,28 @@ Rgba reference_paint(const Paint& paint, const Affine& user_to_device, double x,
           consider((b - sq) / a);
         }
       }
-      if (!found) return {0, 0, 0, 0};
-      return reference_gradient_color(paint, best);
+      return found;
     }
     case Paint::Kind::Conic: {
       const Point d = p - paint.p0();
       double turn = (std::atan2(d.y, d.x) - paint.angle()) / (2 * M_PI);
-      turn -= std::floor(turn);
-      return reference_gradient_color(paint, turn);
+      t = turn - std::floor(turn);
+      return true;
     }
-    default: return {0, 0, 0, 0};
+    default: return false;
   }
+}
+
+Rgba reference_paint(const Paint& paint, const Affine& user_to_device, double x, double y) {
+  if (paint.kind() == Paint::Kind::Solid) {
+    const Color c = paint.color();
+    const double a = clamp01(c.a) * paint.opacity();
+    return {clamp01(c.r) * a, clamp01(c.g) * a, clamp01(c.b) * a, a};
+  }
+  if (paint.kind() == Paint::Kind::Pattern) return reference_pattern(paint, user_to_device, x, y);
+  double t;
+  if (!reference_gradient_t(paint, user_to_device, x, y, t)) return {0, 0, 0, 0};
+  return reference_gradient_color(paint, t);
 }
 
 }  // namespace vraster::test

@@ -26,6 +26,15 @@ Rgba reference_draw(CompositeOp op, const Rgba& s, const Rgba& d, double coverag
 /// Transparent where the paint paints nothing.
 Rgba reference_paint(const Paint& paint, const Affine& user_to_device, double x, double y);
 
+/// The gradient parameter (before the extend mode) at device point (x, y); false where the gradient paints
+/// nothing (outside a radial gradient's cone, degenerate geometry).
+bool reference_gradient_t(const Paint& paint, const Affine& user_to_device, double x, double y, double& t);
+
+/// A pattern sampled at device point (x, y): nearest (the texel containing the point), bilinear (the four texels
+/// around it, weights from the distances to their centres), bicubic (Catmull-Rom, 4 x 4 texels, clamped to a valid
+/// premultiplied colour); texels outside the tile follow each axis's extend mode (None: transparent).
+Rgba reference_pattern(const Paint& paint, const Affine& user_to_device, double x, double y);
+
 /// Gradient colour at parameter t (after the extend mode), straight RGBA interpolated, returned premultiplied.
 Rgba reference_gradient_color(const Paint& paint, double t);
 

@@ -35,7 +35,7 @@ double parse_number(std::string_view flag, std::string_view text) {
   double v = 0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
   if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) {
-    throw UsageError{std::string(flag) + ": '" + std::string(text) + "' is not a number"};
+    throw UsageError{std::string(flag) + ": " + quoted(text) + " is not a number"};
   }
   return v;
 }
@@ -132,26 +132,26 @@ TextArgs parse_args(int argc, char** argv) {
       if (v == "left") a.layout.align = Align::Left;
       else if (v == "center" || v == "centre") a.layout.align = Align::Center;
       else if (v == "right") a.layout.align = Align::Right;
-      else throw UsageError{"--align: expected left, center or right, got '" + std::string(v) + "'"};
+      else throw UsageError{"--align: expected left, center or right, got " + quoted(v)};
     } else if (arg == "--dir") {
       const auto v = value(arg);
       if (v == "auto") a.style.direction = Direction::Auto;
       else if (v == "ltr") a.style.direction = Direction::LeftToRight;
       else if (v == "rtl") a.style.direction = Direction::RightToLeft;
-      else throw UsageError{"--dir: expected auto, ltr or rtl, got '" + std::string(v) + "'"};
+      else throw UsageError{"--dir: expected auto, ltr or rtl, got " + quoted(v)};
     } else if (arg == "--hinting") {
       const auto v = value(arg);
       if (v == "none") a.render.hinting = Hinting::None;
       else if (v == "light") a.render.hinting = Hinting::Light;
-      else throw UsageError{"--hinting: expected none or light, got '" + std::string(v) + "'"};
+      else throw UsageError{"--hinting: expected none or light, got " + quoted(v)};
     } else if (arg == "--color" || arg == "--background") {
       const auto v = value(arg);
       const auto c = parse_color(v);
-      if (!c) throw UsageError{std::string(arg) + ": '" + std::string(v) + "' is not a colour"};
+      if (!c) throw UsageError{std::string(arg) + ": " + quoted(v) + " is not a colour"};
       (arg == "--color" ? a.color : a.background) = *c;
     } else if (arg == "--aa") {
       const auto v = value(arg);
-      if (!parse_anti_alias(v, a.render.aa)) throw UsageError{"--aa: unknown mode '" + std::string(v) + "'"};
+      if (!parse_anti_alias(v, a.render.aa)) throw UsageError{"--aa: unknown mode " + quoted(v)};
     } else if (arg == "--features") {
       a.style.features = value(arg);
     } else if (arg == "--lang") {
@@ -159,7 +159,7 @@ TextArgs parse_args(int argc, char** argv) {
     } else if (arg == "--script") {
       a.style.script = value(arg);
     } else if (arg.size() > 1 && arg[0] == '-' ) {
-      throw UsageError{"text: unknown option '" + std::string(arg) + "'"};
+      throw UsageError{"text: unknown option " + quoted(arg)};
     } else if (!a.have_text) {
       a.text = arg;
       a.have_text = true;
@@ -200,13 +200,10 @@ int run_text_command(int argc, char** argv) {
     write_png(a.output, image);
     return 0;
   } catch (const UsageError& e) {
-    std::cerr << "vraster: " << e.message << "\n" << kUsage;
+    std::cerr << "vraster: " << printable(e.message, kMaxMessageBytes) << "\n" << kUsage;
     return 2;
-  } catch (const Error& e) {
-    std::cerr << "vraster: " << e.what() << "\n";
-    return 2;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "vraster: out of memory\n";
+  } catch (...) {
+    std::cerr << "vraster: " << describe_current_exception() << "\n";
     return 2;
   }
 }

@@ -69,6 +69,7 @@ struct DrawItem {
   Color color;       ///< opacity and fill-opacity / stroke-opacity already folded into color.a
   FillRule rule = FillRule::NonZero;  ///< fills only
   StrokeStyle stroke;                 ///< strokes only (user-space lengths; width > 0)
+  int line = 0, column = 0;           ///< where the element starts in the file (for messages at render time)
   bool is_fill() const { return kind == Kind::Fill; }
   bool is_stroke() const { return kind == Kind::Stroke; }
 };
@@ -80,7 +81,9 @@ struct Document {
   double intrinsic_width = 0;   ///< the root's size in CSS px, before rounding
   double intrinsic_height = 0;
   std::vector<DrawItem> items;
-  std::vector<std::string> warnings;  ///< "LINE:COLUMN: message" for things ignored
+  /// "LINE:COLUMN: message" for things ignored; at most 20 of a kind, then one line "... and K more".
+  std::vector<std::string> warnings;
+  std::string file;  ///< the name given to parse_svg, for messages at render time
 };
 
 /// The output size for a requested width and/or height (0 = not given), as resvg and rsvg-convert size their
@@ -107,7 +110,8 @@ struct RenderSettings {
   std::optional<HairlineMode> hairline;
 };
 
-/// Draws every item of `doc` onto `image` (which should be doc.width x doc.height) in order.
+/// Draws every item of `doc` onto `image` (which should be doc.width x doc.height) in order. A core limit
+/// reached by one item (vraster::Error) is rethrown as a ParseError at that item's element.
 template <class T>
 void render(const Document& doc, BasicImage<T>& image, const RenderSettings& settings, Renderer& renderer);
 

@@ -1,0 +1,189 @@
+// Hostile SVG input (issue 12): each example of the issue as a named regression test, plus the mechanisms
+// behind them (XML well-formedness, linear style parsing, safe messages, warning summaries, dash checks).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "svg_subset/svg.hpp"
+#include "vraster/error.hpp"
+#include "vraster/stroke.hpp"
+
+namespace {
+
+using vraster::DashVerdict;
+using vraster::Path;
+using vraster::svg::Document;
+using vraster::svg::parse_svg;
+using vraster::svg::ParseError;
+
+/// Parses `svg`, expecting a ParseError at line:column whose message contains `text`.
+void expect_error_at(const std::string& svg, int line, int column, const std::string& text) {
+  try {
+    parse_svg(svg, "hostile.svg");
+    ADD_FAILURE() << "no error for:\n" << svg;
+  } catch (const ParseError& e) {
+    EXPECT_EQ(e.line(), line) << e.what();
+    EXPECT_EQ(e.column(), column) << e.what();
+    EXPECT_NE(e.message().find(text), std::string::npos) << e.what();
+  }
+}
+
+bool has_control_bytes(const std::string& s) {
+  return std::any_of(s.begin(), s.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+}
+
+const std::string kOpen = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\">";
+
+// ---- malformed XML (the issue's four cases, then what must stay accepted) ----
+
+TEST(HostileXml, TwoRootElements) {
+  expect_error_at(kOpen + "</svg>\n<svg width=\"1\" height=\"1\"/>", 2, 1, "second root element");
+}
+
+TEST(HostileXml, ContentAfterClosingSvg) {
+  expect_error_at(kOpen + "</svg>\n  junk", 2, 3, "text after the end of the root element");
+  expect_error_at(kOpen + "</svg>&amp;", 1, 70, "outside the root element");
+}
+
+TEST(HostileXml, DuplicateAttributes) {
+  expect_error_at(kOpen + "\n<rect width=\"1\" height=\"2\" width=\"3\"/></svg>", 2, 28, "duplicate attribute 'width'");
+  // Also on elements that are never drawn.
+  expect_error_at(kOpen + "<defs><g\n id=\"a\" id=\"b\"/></defs></svg>", 2, 9, "duplicate attribute 'id'");
+}
+
+TEST(HostileXml, UndefinedEntities) {
+  expect_error_at(kOpen + "\n<rect fill=\"&nbsp;\" width=\"1\" height=\"1\"/></svg>", 2, 13, "undefined entity '&nbsp;'");
+  expect_error_at(kOpen + "<desc>a &foo; b</desc></svg>", 1, 72, "undefined entity '&foo;'");
+  expect_error_at(kOpen + "<desc>AT&T</desc></svg>", 1, 72, "'&' that does not start an entity reference");
+  expect_error_at(kOpen + "<desc>&#0;</desc></svg>", 1, 70, "character reference '&#0;'");
+  expect_error_at("<!DOCTYPE svg [<!ENTITY ns 'x'>]>" + kOpen + "<g id=\"&ns;\"/></svg>", 1, 104,
+                  "declared in a DOCTYPE are not supported");
+}
+
+TEST(HostileXml, LessThanInAttributeValue) {
+  expect_error_at(kOpen + "<g id=\"a<b\"/></svg>", 1, 72, "'<' inside an attribute value");
+}
+
+TEST(HostileXml, WellFormedExtrasStayAccepted) {
+  const std::string text = "\xEF\xBB\xBF<?xml version=\"1.0\"?>\n<!-- before -->\n<!DOCTYPE svg [ <!ATTLIST svg a CDATA '>'> ]>\n" +
+                           kOpen +
+                           "<desc><![CDATA[ & < > ]]> &lt;&gt;&amp;&apos;&quot;&#65;&#x1F600;</desc>"
+                           "<rect width=\"5\" height=\"5\" id=\"a&amp;b&#x3e;\"/></svg>\n<!-- after -->\n<?pi x?>\n";
+  const Document doc = parse_svg(text, "ok.svg");
+  EXPECT_EQ(doc.items.size(), 1u);
+}
+
+// ---- linear time ----
+
+TEST(HostileStyle, StyleAttributeWith300000Declarations) {
+  // Each declaration used to re-walk the attribute from its start to find its position (quadratic: > 20 s).
+  // The position of an error in the last declaration is still exact.
+  std::string style;
+  for (int i = 0; i < 300000; ++i) style += "fill:red;";
+  const Document doc = parse_svg(kOpen + "<rect width=\"5\" height=\"5\" style=\"" + style + "\"/></svg>");
+  ASSERT_EQ(doc.items.size(), 1u);
+  EXPECT_FLOAT_EQ(doc.items[0].color.r, 1.0f);
+  const std::string prefix = kOpen + "\n<rect width=\"5\" height=\"5\" style=\"";
+  expect_error_at(prefix + style + "fill:bad\"/></svg>", 2, 35 + static_cast<int>(style.size()) + 5,
+                  "invalid colour for fill: 'bad'");
+}
+
+TEST(HostileStyle, ManyMalformedDeclarationsWarnBriefly) {
+  std::string style;
+  for (int i = 0; i < 100000; ++i) style += "junk;";
+  const Document doc = parse_svg(kOpen + "<rect width=\"5\" height=\"5\" style=\"" + style + "\"/></svg>");
+  EXPECT_EQ(doc.warnings.size(), 21u);
+}
+
+// ---- messages: sanitised and capped, repeated warnings summarised ----
+
+TEST(HostileMessages, PrintableEscapesControlCharactersAndCaps) {
+  EXPECT_EQ(vraster::printable("a\x1b[31mb\x07\n"), "a\\x1b[31mb\\x07\\n");
+  EXPECT_EQ(vraster::printable("\xc2\x9b" "2J"), "\\x9b2J");              // C1 CSI, UTF-8 encoded
+  EXPECT_EQ(vraster::printable("\xe2\x80\xae" "abc"), "\\u{202e}abc");    // right-to-left override
+  EXPECT_EQ(vraster::printable("\xff\xfe ok"), "\\xff\\xfe ok");          // not UTF-8
+  EXPECT_EQ(vraster::printable("caf\xc3\xa9"), "caf\xc3\xa9");            // UTF-8 text stays
+  EXPECT_EQ(vraster::printable(std::string(100000, '9'), 10), "9999999999...");
+  EXPECT_EQ(vraster::quoted("x"), "'x'");
+}
+
+TEST(HostileMessages, ControlCharactersInAttributeValueAreEscaped) {
+  try {
+    parse_svg(kOpen + "<rect fill=\"\x1b]0;pwned\x07\" width=\"1\" height=\"1\"/></svg>");
+    ADD_FAILURE() << "no error";
+  } catch (const ParseError& e) {
+    EXPECT_FALSE(has_control_bytes(e.what())) << e.what();
+    EXPECT_NE(std::string(e.what()).find("\\x1b]0;pwned\\x07"), std::string::npos) << e.what();
+  }
+}
+
+TEST(HostileMessages, HundredKilobyteNumberIsNotEchoedWhole) {
+  const std::string number = "1" + std::string(100000, '0');
+  for (const std::string& body : {"<path d=\"M" + number + " 0 L1 1\"/>", "<rect width=\"" + number + "x\" height=\"1\"/>",
+                                  "<rect width=\"1\" height=\"1\" stroke-dasharray=\"" + number + "q\"/>"}) {
+    try {
+      parse_svg(kOpen + body + "</svg>");
+      ADD_FAILURE() << "no error for " << body.substr(0, 30);
+    } catch (const ParseError& e) {
+      EXPECT_LT(std::string(e.what()).size(), 300u) << std::string(e.what()).substr(0, 300);
+    }
+  }
+}
+
+TEST(HostileMessages, MillionIgnoredElementsGiveASummary) {
+  // 10^5 here (10^6 would be at the element limit): the first 20 warnings, then one line for the rest.
+  std::string body;
+  for (int i = 0; i < 100000; ++i) body += "<foo/>";
+  const Document doc = parse_svg(kOpen + body + "</svg>");
+  ASSERT_EQ(doc.warnings.size(), 21u);
+  EXPECT_EQ(doc.warnings[0], "1:64: element <foo> is not supported yet, ignored");
+  EXPECT_EQ(doc.warnings[20], "1:184: ... and 99980 more warnings about unsupported elements (not shown)");
+}
+
+// ---- dashes ----
+
+Path ten_px_line() {
+  Path p;
+  p.move_to({0, 5}).line_to({10, 5});
+  return p;
+}
+
+TEST(HostileDashes, DashArray1e308WithNegativeOffsetDrawsSolid) {
+  // The odd pattern doubled to [1e308, 1e308] sums to infinity; the offset loop never ended.
+  EXPECT_EQ(vraster::check_dashes(ten_px_line(), {1e308}), DashVerdict::Invalid);
+  const Document doc = parse_svg(kOpen + "<path d=\"M0 5 L10 5\" stroke=\"red\" stroke-dasharray=\"1e308\" "
+                                         "stroke-dashoffset=\"-1\"/></svg>");
+  ASSERT_EQ(doc.warnings.size(), 1u);
+  EXPECT_NE(doc.warnings[0].find("drawn solid"), std::string::npos) << doc.warnings[0];
+  vraster::Image image(10, 10);
+  image.clear(vraster::Color::transparent());
+  vraster::Renderer renderer;
+  vraster::svg::render(doc, image, {}, renderer);
+  for (int x = 0; x < 10; ++x) EXPECT_EQ(image.pixel(x, 4)[3], 128) << x;  // solid: half of rows 4 and 5
+  // dash_polylines itself, given such a pattern directly, copies the pieces unchanged instead of looping.
+  std::vector<vraster::StrokePolyline> pieces, out;
+  vraster::flatten_for_stroke(ten_px_line(), 0.1, pieces);
+  vraster::dash_polylines(pieces, {1e308, 1e308}, -1, out);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].points.size(), 2u);
+}
+
+TEST(HostileDashes, TinyDashesOnWideStrokeDrawSolidWithWarning) {
+  // stroke-width 100, dashes of 0.0000477: 2 * 10 / 0.0000954 = 209,644 pattern elements, over the limit.
+  EXPECT_EQ(vraster::check_dashes(ten_px_line(), {0.0000477, 0.0000477}), DashVerdict::TooMany);
+  EXPECT_EQ(vraster::check_dashes(ten_px_line(), {1, 1}), DashVerdict::Dashed);
+  EXPECT_EQ(vraster::check_dashes(ten_px_line(), {0, 0}), DashVerdict::Invalid);
+  EXPECT_EQ(vraster::check_dashes(ten_px_line(), {}), DashVerdict::None);
+  const Document doc = parse_svg(kOpen + "<path d=\"M0 5 L10 5\" stroke=\"red\" stroke-width=\"100\" "
+                                         "stroke-dasharray=\"0.0000477 0.0000477\"/></svg>");
+  ASSERT_EQ(doc.warnings.size(), 1u);
+  EXPECT_NE(doc.warnings[0].find("more than 65536"), std::string::npos) << doc.warnings[0];
+  vraster::Image image(10, 10);
+  image.clear(vraster::Color::transparent());
+  vraster::Renderer renderer;
+  vraster::svg::render(doc, image, {}, renderer);
+  EXPECT_EQ(image.pixel(5, 5)[3], 255);  // solid
+}
+
+}  // namespace

@@ -1,0 +1,136 @@
+// Image patterns against the slow per-pixel reference (tests/support/paint_reference): 8- and 16-bit tiles onto 8-
+// and 16-bit targets, every filter, every extend mode on each axis, with the pattern's own transform.
+//
+// Tolerance: one level of the target per channel (the fast code accumulates in float, the reference in double).
+// Nearest sampling is a step function of the position: where a pixel centre maps exactly onto a texel border the
+// two may pick different sides, so a pixel also passes when it matches the reference 1e-6 px away.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "support/paint_reference.hpp"
+#include "vraster/composite.hpp"
+
+namespace vraster {
+namespace {
+
+using test::Rgba;
+
+template <class S>
+std::shared_ptr<BasicImage<S>> random_tile(int w, int h, unsigned seed) {
+  auto tile = std::make_shared<BasicImage<S>>(w, h);
+  std::mt19937 rng(seed);
+  const std::uint32_t m = BasicImage<S>::kMax;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      S* p = tile->pixel(x, y);
+      const std::uint32_t a = (x + y) % 3 == 0 ? m : static_cast<std::uint32_t>(rng() % (m + 1));
+      p[3] = static_cast<S>(a);
+      for (int c = 0; c < 3; ++c) p[c] = static_cast<S>(rng() % (a + 1));
+    }
+  }
+  return tile;
+}
+
+const char* extend_name(Extend e) {
+  switch (e) {
+    case Extend::Pad: return "pad";
+    case Extend::Repeat: return "repeat";
+    case Extend::Reflect: return "reflect";
+    default: return "none";
+  }
+}
+const char* filter_name(ImageFilter f) {
+  return f == ImageFilter::Nearest ? "nearest" : f == ImageFilter::Bilinear ? "bilinear" : "bicubic";
+}
+
+template <class T>
+int check_pattern(const Paint& paint, const Affine& device, const std::string& what) {
+  constexpr int kW = 40, kH = 32;
+  const double m = BasicImage<T>::kMax;
+  BasicImage<T> image(kW, kH);
+  Compositor<T> comp;
+  comp.set(ImageView<T>::of(image), paint, device, CompositeOp::Copy);
+  for (int y = 0; y < kH; ++y) comp.span(y, 0, kW, 1.f);
+  int wrong = 0;
+  for (int y = 0; y < kH; ++y) {
+    for (int x = 0; x < kW; ++x) {
+      const T* px = image.pixel(x, y);
+      bool ok = false;
+      Rgba ref{};
+      for (double e : {0.0, 1e-6, -1e-6}) {
+        for (double f : {0.0, 1e-6, -1e-6}) {
+          if (ok) break;
+          ref = test::reference_pattern(paint, device, x + 0.5 + e, y + 0.5 + f);
+          ok = true;
+          for (std::size_t c = 0; c < 4; ++c) ok = ok && std::abs(px[c] - ref[c] * m) <= 1.0;
+        }
+      }
+      if (!ok && ++wrong <= 3) {
+        ref = test::reference_pattern(paint, device, x + 0.5, y + 0.5);
+        ADD_FAILURE() << what << " at (" << x << ", " << y << "): " << px[0] << " " << px[1] << " " << px[2] << " "
+                      << px[3] << ", reference " << ref[0] * m << " " << ref[1] * m << " " << ref[2] * m << " "
+                      << ref[3] * m;
+      }
+    }
+  }
+  return wrong;
+}
+
+template <class T, class S>
+void check_all_patterns() {
+  const auto tile = random_tile<S>(7, 5, 11);
+  const Extend extends[] = {Extend::None, Extend::Pad, Extend::Repeat, Extend::Reflect};
+  const ImageFilter filters[] = {ImageFilter::Nearest, ImageFilter::Bilinear, ImageFilter::Bicubic};
+  const Affine device = Affine::translate(4, 3) * Affine::scale(1.25);
+  const Affine owns[] = {Affine::translate(6, 5), Affine::translate(6.3, 4.7) * Affine::scale(2.5, 1.75),
+                         Affine::rotate(30, 10, 8) * Affine::scale(1.5) * Affine::translate(2, 1),
+                         Affine::scale(0.4)};
+  for (ImageFilter f : filters) {
+    for (Extend ex : extends) {
+      for (Extend ey : extends) {
+        for (std::size_t k = 0; k < std::size(owns); ++k) {
+          Paint p = Paint::pattern(std::shared_ptr<const BasicImage<S>>(tile));
+          p.set_filter(f);
+          p.set_extend(ex, ey);
+          p.set_transform(owns[k]);
+          if (k == 2) p.set_opacity(0.6f);
+          const std::string what = std::string(filter_name(f)) + " " + extend_name(ex) + "/" + extend_name(ey) +
+                                   " transform " + std::to_string(k);
+          if (check_pattern<T>(p, device, what) > 0) return;
+        }
+      }
+    }
+  }
+}
+
+TEST(Pattern, EightBitTileOnEightBitTarget) { check_all_patterns<std::uint8_t, std::uint8_t>(); }
+TEST(Pattern, SixteenBitTileOnSixteenBitTarget) { check_all_patterns<std::uint16_t, std::uint16_t>(); }
+TEST(Pattern, EightBitTileOnSixteenBitTarget) { check_all_patterns<std::uint16_t, std::uint8_t>(); }
+TEST(Pattern, SixteenBitTileOnEightBitTarget) { check_all_patterns<std::uint8_t, std::uint16_t>(); }
+
+// A tiny hand-made case: a 2 x 1 tile (red, blue) repeated, nearest, at one pixel per texel.
+TEST(Pattern, RepeatedTileByHand) {
+  auto tile = std::make_shared<Image>(2, 1);
+  tile->pixel(0, 0)[0] = 255, tile->pixel(0, 0)[3] = 255;
+  tile->pixel(1, 0)[2] = 255, tile->pixel(1, 0)[3] = 255;
+  Paint p = Paint::pattern(std::shared_ptr<const Image>(tile));
+  p.set_filter(ImageFilter::Nearest);
+  Image image(5, 2);
+  Compositor<std::uint8_t> comp;
+  comp.set(ImageView<std::uint8_t>::of(image), p, Affine::translate(1, 0), CompositeOp::SourceOver);
+  comp.span(1, 0, 5, 1.f);
+  const int red[] = {0, 255, 0, 255, 0};
+  for (int x = 0; x < 5; ++x) {
+    EXPECT_EQ(image.pixel(x, 1)[0], red[x]) << x;
+    EXPECT_EQ(image.pixel(x, 1)[2], 255 - red[x]) << x;
+    EXPECT_EQ(image.pixel(x, 0)[3], 0) << x;
+  }
+}
+
+}  // namespace
+}  // namespace vraster
