@@ -194,10 +194,118 @@ if(NOT OUT MATCHES "^frames=2 ms_per_frame_median=[0-9.]+ ms_min=[0-9.]+\n$")
 endif()
 expect_png("--bench 2 with -o" "${WORK}/bench.png" 8 6 8)
 
+# --- mesh, shading, depth ---
+run_vraster(mesh "${SRC}/../samples/colour_wheel.vmesh" -o wheel.png --aa)
+expect_status("mesh .vmesh sample" 0)
+expect_png("mesh .vmesh sample" "${WORK}/wheel.png" 320 240 8)
+run_vraster(mesh "${SRC}/../samples/pyramid.obj" -o pyramid.png --camera perspective --width 96 --height 64
+            --shading phong --bits 16 --depth painter)
+expect_status("mesh OBJ sample" 0)
+expect_png("mesh OBJ sample" "${WORK}/pyramid.png" 96 64 16)
+run_vraster(shading -o shading.png --panel 40)
+expect_status("shading sheet" 0)
+expect_png("shading sheet" "${WORK}/shading.png" 168 138 8)
+run_vraster(depth -o depth.png --panel 40)
+expect_status("depth sheet" 0)
+expect_png("depth sheet" "${WORK}/depth.png" 116 138 8)
+# Bad mesh files: FILE:LINE:COLUMN, exit status 2, no output file.
+file(WRITE "${WORK}/bad_number.vmesh" "vmesh 1\nv 1 2 0 #ff0000\nv 3 x4 0 #00ff00\n")
+file(WRITE "${WORK}/bad_index.vmesh" "vmesh 1\nv 1 2 0 #ff0000\nv 3 4 0 #00ff00\nv 5 1 0 #0000ff\nt 0 1 3\n")
+file(WRITE "${WORK}/bad_colour.vmesh" "vmesh 1\n  v 1 2 0 red\n")
+file(WRITE "${WORK}/no_header.vmesh" "v 1 2 0 #ff0000\n")
+file(WRITE "${WORK}/infinite.vmesh" "vmesh 1\nv 1 inf 0 #ff0000\n")
+file(WRITE "${WORK}/huge.vmesh" "vmesh 1\nsize 100000 10\n")
+file(WRITE "${WORK}/bad_face.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n")
+file(WRITE "${WORK}/zero_index.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 0 3\n")
+file(WRITE "${WORK}/no_faces.obj" "v 0 0 0\n")
+foreach(case "bad_number.vmesh;:3:5: " "bad_index.vmesh;:5:7: .*vertex 3" "bad_colour.vmesh;:2:11: .*colour"
+             "no_header.vmesh;:1:1: .*vmesh 1" "infinite.vmesh;:2:5: .*not finite" "huge.vmesh;:2:6: .*width"
+             "bad_face.obj;:4:7: .*out of range" "zero_index.obj;:4:5: " "no_faces.obj;no faces")
+  list(GET case 0 file)
+  list(GET case 1 regex)
+  run_vraster(mesh ${file} -o mesh_out.png)
+  expect_status("mesh ${file}" 2)
+  expect_stderr("mesh ${file}" "${regex}")
+  expect_no_file("mesh ${file}" "${WORK}/mesh_out.png")
+endforeach()
+run_vraster(mesh "${SRC}/../samples/pyramid.obj" -o mesh_out.png --shading glossy)
+expect_status("mesh unknown shading" 2)
+expect_no_file("mesh unknown shading" "${WORK}/mesh_out.png")
+
 # --- demo ---
 run_vraster(demo -o demo-out.png)
 expect_status("demo" 0)
 expect_png("demo" "${WORK}/demo-out.png" 640 400 8)
+
+# --- hostile input (issue 12): uncaught exceptions, output files, input size caps ---
+execute_process(COMMAND ${CMAKE_COMMAND} -E env VRASTER_BENCH_SCENES=/nonexistent "${VRASTER}" accuracy -o acc_missing
+                WORKING_DIRECTORY "${WORK}" RESULT_VARIABLE RC OUTPUT_VARIABLE OUT ERROR_VARIABLE ERR TIMEOUT 60)
+expect_status("VRASTER_BENCH_SCENES=/nonexistent vraster accuracy -o D" 2)
+expect_stderr("VRASTER_BENCH_SCENES=/nonexistent vraster accuracy -o D" "VRASTER_BENCH_SCENES='/nonexistent' is not a directory")
+expect_no_file("VRASTER_BENCH_SCENES=/nonexistent vraster accuracy -o D" "${WORK}/acc_missing/accuracy.png")
+
+# accuracy from a deleted working directory: std::filesystem threw and the program aborted.
+execute_process(COMMAND sh -c "mkdir -p '${WORK}/gone' && cd '${WORK}/gone' && rmdir '${WORK}/gone' && exec \"$0\" accuracy -o D"
+                        "${VRASTER}"
+                RESULT_VARIABLE RC OUTPUT_VARIABLE OUT ERROR_VARIABLE ERR TIMEOUT 120)
+expect_status("accuracy from a deleted working directory" 2)
+expect_stderr("accuracy from a deleted working directory" "^vraster: accuracy: cannot create directory 'D'")
+
+# accuracy -o D: both files or neither (here accuracy.md cannot be written: it is a directory).
+file(MAKE_DIRECTORY "${WORK}/acc_half/accuracy.md")
+run_vraster(accuracy "${DATA}/tiny.svg" -o acc_half --frames 1)
+expect_status("accuracy -o D when a later file fails" 2)
+expect_no_file("accuracy -o D when a later file fails" "${WORK}/acc_half/accuracy.png")
+
+# A symlink at the old fixed temporary name must not be followed; an existing .partial file is not taken over.
+file(WRITE "${WORK}/victim" "")
+file(CREATE_LINK "${WORK}/victim" "${WORK}/linked.png.partial" SYMBOLIC)
+run_vraster(render "${DATA}/tiny.svg" -o linked.png)
+expect_status("symlink out.png.partial -> victim" 0)
+file(SIZE "${WORK}/victim" victim_size)
+if(NOT victim_size EQUAL 0 OR NOT IS_SYMLINK "${WORK}/linked.png.partial")
+  fail("symlink out.png.partial -> victim: the victim was written (${victim_size} bytes) or the link replaced")
+endif()
+expect_png("symlink out.png.partial -> victim" "${WORK}/linked.png" 8 6 8)
+file(WRITE "${WORK}/taken.png.partial" "keep me")
+run_vraster(render "${DATA}/tiny.svg" -o taken.png)
+file(READ "${WORK}/taken.png.partial" kept)
+if(NOT kept STREQUAL "keep me")
+  fail("existing a.png.partial: it was taken over")
+endif()
+file(GLOB leftovers "${WORK}/*.partial")
+list(REMOVE_ITEM leftovers "${WORK}/taken.png.partial" "${WORK}/linked.png.partial")
+if(leftovers)
+  fail("temporary files left behind: ${leftovers}")
+endif()
+
+# -o /dev/full: written through (an error: no space), never replaced by a regular file.
+if(EXISTS /dev/full)
+  run_vraster(render "${DATA}/tiny.svg" -o /dev/full)
+  expect_status("-o /dev/full" 2)
+  expect_stderr("-o /dev/full" "cannot write '/dev/full': No space left on device")
+  execute_process(COMMAND stat -c %F /dev/full OUTPUT_VARIABLE kind OUTPUT_STRIP_TRAILING_WHITESPACE)
+  if(NOT kind STREQUAL "character special file")
+    fail("-o /dev/full: /dev/full is now a ${kind}")
+  endif()
+endif()
+
+# A read-only target keeps its mode (it used to become 0644).
+file(WRITE "${WORK}/readonly.png" "old")
+file(CHMOD "${WORK}/readonly.png" PERMISSIONS OWNER_READ GROUP_READ WORLD_READ)
+run_vraster(render "${DATA}/tiny.svg" -o readonly.png)
+expect_status("read-only target" 0)
+execute_process(COMMAND stat -c %a "${WORK}/readonly.png" OUTPUT_VARIABLE mode OUTPUT_STRIP_TRAILING_WHITESPACE)
+if(NOT mode STREQUAL "444")
+  fail("read-only target: mode ${mode} after writing, expected 444")
+endif()
+expect_png("read-only target" "${WORK}/readonly.png" 8 6 8)
+
+# Inputs without an end: the size caps stop them.
+run_vraster(render /dev/zero -o zero.png)
+expect_status("vraster render /dev/zero" 2)
+expect_stderr("vraster render /dev/zero" "larger than the limit of 64 MiB")
+expect_no_file("vraster render /dev/zero" "${WORK}/zero.png")
 
 if(FAILURES)
   list(LENGTH FAILURES n)

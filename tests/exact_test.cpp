@@ -327,10 +327,11 @@ TEST(ExactRandom, CoarseGridDegeneraciesMatchReference) {
   std::printf("[ExactRandom] coarse grid: max error %.3g\n", worst);
 }
 
-// BUG (engine, boundary sweep; same family as HardCase.DISABLED_EdgeTiltedByOneUlpCrossingOtherEdges): with y
-// coordinates nudged by one ulp, 15 of the 900 (polygon, rule) pairs come out wrong by up to 0.2 per pixel (e.g. seed
-// 9, NonZero: 0.214). The reference's two methods agree on these inputs to 4e-14, and the same polygons without the
-// nudge all pass (test above).
+// Regression (boundary sweep, same family as HardCase.EdgeTiltedByOneUlpCrossingOtherEdges): fixed in 309ac62
+// (crossings before vertices at equal height, out-of-order neighbours swapped at once). With y coordinates nudged by
+// one ulp, 15 of the 900 (polygon, rule) pairs used to come out wrong by up to 0.2 per pixel (seed 9, NonZero: 0.214);
+// the reference's two methods agree on these inputs to 4e-14, and the same polygons without the nudge pass (test
+// above).
 TEST(ExactRandom, OneUlpNudgedCoarseGridMatchesReference) {
   int failures = 0;
   for (unsigned seed = 1; seed <= 300; ++seed) {

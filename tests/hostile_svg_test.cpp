@@ -7,6 +7,7 @@
 
 #include "svg_subset/svg.hpp"
 #include "vraster/error.hpp"
+#include "vraster/files.hpp"
 #include "vraster/stroke.hpp"
 
 namespace {
@@ -189,6 +190,26 @@ TEST(HostileDashes, TinyDashesOnWideStrokeDrawSolidWithWarning) {
   vraster::Renderer renderer;
   vraster::svg::render(doc, image, {}, renderer);
   EXPECT_EQ(image.pixel(5, 5)[3], 255);  // solid
+}
+
+}  // namespace
+
+namespace {
+
+TEST(HostileInput, RenderDevZeroStopsAtTheSizeCap) {
+  // `vraster render /dev/zero` read until memory ran out; every input is read through read_file_limited.
+  try {
+    vraster::read_file_limited("/dev/zero", 1 << 20, "SVG file");
+    FAIL() << "no error";
+  } catch (const vraster::Error& e) {
+    EXPECT_EQ(std::string(e.what()), "SVG file '/dev/zero' is larger than the limit of 1 MiB");
+  }
+  try {
+    vraster::read_file_limited("/", 1 << 20, "font");
+    FAIL() << "no error";
+  } catch (const vraster::Error& e) {
+    EXPECT_EQ(std::string(e.what()), "cannot read font '/': it is a directory");
+  }
 }
 
 }  // namespace

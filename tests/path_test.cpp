@@ -169,8 +169,9 @@ TEST(Path, NonFiniteCoordinateInAnySegmentCallThrowsAndLeavesThePathUnchanged) {
   }
 }
 
-// BUG (partial rectangle): add_rect and add_round_rect check their corners one segment at a time, so a non-finite
-// x1/y1 throws after move_to has already started a contour: add_rect({0, 0, NaN, 1}) leaves "M(0,0)" behind.
+// Regression (partial rectangle): fixed in bbb3daf (all-or-nothing builders). add_rect and add_round_rect used to
+// check their corners one segment at a time, so a non-finite x1/y1 threw after move_to had started a contour:
+// add_rect({0, 0, NaN, 1}) left "M(0,0)" behind. Guards: a non-finite rectangle throws and leaves the path as it was.
 TEST(Path, NonFiniteRectangleThrowsAndLeavesThePathUnchanged) {
   for (double bad : {kNaN, kInf}) {
     EXPECT_TRUE(throws_and_keeps_path([&](Path& p) { p.add_rect({0, 0, bad, 1}); })) << "add_rect x1 " << bad;
@@ -183,10 +184,11 @@ TEST(Path, NonFiniteRectangleThrowsAndLeavesThePathUnchanged) {
   }
 }
 
-// BUG (arc overflow leaves segments behind): arc_to and add_ellipse check their arguments, but a finite arc whose
-// control points overflow (radius near DBL_MAX) throws from inside arc_segments() after some cubics were appended:
-// move_to(0,0); arc_to(1.5e308, 1.5e308, 0, false, true, {1e308, 0}) throws with 5 verbs in the path, and
-// add_ellipse({0,0}, 1.75e308, 1) throws with a dozen cubics added.
+// Regression (arc overflow left segments behind): fixed in bbb3daf (all-or-nothing builders, arcs computed from the
+// start point). A finite arc whose control points overflow (radius near DBL_MAX) used to throw from inside
+// arc_segments() after some cubics were appended: arc_to(1.5e308, 1.5e308, 0, false, true, {1e308, 0}) from (0,0)
+// threw with 5 verbs in the path, add_ellipse({0,0}, 1.75e308, 1) with a dozen cubics added. Guards: such arcs are
+// finite or throw with the path unchanged.
 TEST(Path, ArcOrEllipseWithHugeRadiiIsFiniteOrThrowsAndLeavesThePathUnchanged) {
   // This arc's points are all representable (computed relative to its start point): it may succeed, but then
   // every point must be finite.
@@ -304,11 +306,10 @@ TEST(PathArc, NegativeRadiiActAsTheirAbsoluteValues) {
   EXPECT_EQ(points_of(a), points_of(b));
 }
 
-// BUG (arc radius overflow): for radii above ~1e77, rx^2 * ry^2 overflows in the centre computation (F.6.5.2), the
-// square-root factor becomes NaN -> 0, and the centre lands on the chord's midpoint: arc_to(1e200, 1e200, 0, false,
-// true, {10, 0}) from (0,0) draws a half ellipse reaching y = -1e200 instead of an all but straight arc
-// (sagitta 25 / 2r). Fix: compute with radii normalised (e.g. divided by max(rx, ry)) or solve for the centre as
-// SVG implementations do via the scaled unit circle.
+// Regression (arc radius overflow): fixed in bbb3daf (overflow-free arcs). For radii above ~1e77, rx^2 * ry^2 used to
+// overflow in the centre computation (F.6.5.2): the square-root factor became NaN -> 0 and the centre landed on the
+// chord's midpoint, so arc_to(1e200, 1e200, 0, false, true, {10, 0}) from (0,0) drew a half ellipse reaching
+// y = -1e200 instead of an all but straight arc (sagitta 25 / 2r). Guards: huge radii give a nearly straight arc.
 TEST(PathArc, HugeRadiusGivesANearlyStraightArc) {
   for (double r : {1e10, 1e100, 1e200, 1e300}) {
     Path p;
@@ -472,10 +473,10 @@ TEST(PathTransform, TransformedThrowsOnNonFiniteResultAndKeepsTheOriginal) {
   EXPECT_EQ(points_of(p), before);
 }
 
-// BUG (half-transformed path): Path::transform() assigns each mapped point before checking it, so when a result is
-// not finite it throws with the earlier points mapped and the offending point stored as inf:
-// move_to(1,1).line_to(1e300,0); transform(scale(1e10)) -> throws, points are now (1e10,1e10) (inf,0), breaking the
-// "every coordinate is finite" invariant that later stages trust.
+// Regression (half-transformed path): fixed in bbb3daf (all-or-nothing transform). Path::transform() used to assign
+// each mapped point before checking it, so move_to(1,1).line_to(1e300,0); transform(scale(1e10)) threw with the
+// points now (1e10,1e10) (inf,0), breaking the "every coordinate is finite" invariant later stages trust. Guards: a
+// failed transform leaves the path unchanged and finite.
 TEST(PathTransform, FailedTransformInPlaceLeavesThePathUnchanged) {
   Path p;
   p.move_to(1, 1).line_to(1e300, 0);

@@ -483,10 +483,12 @@ struct SpanLog final : CoverageSink {
   void row(int y, int x0, int x1, const float* c) override { calls.push_back({y, x0, x1, c[0]}); }
 };
 
-// BUG (analytic round-off residue): the running sum of the cell deltas does not return to exactly 0 right of a
-// shape, and the leftover (~1e-16) is handed to the sink as coverage, as a span reaching to the end of the row.
-// Repro: the triangle (0,0) (1,1/3) (1/3,1) lies inside pixel (0,0) (area 4/9), yet on a 1000-pixel-wide canvas
-// row 0 gets "row [0,3) 0.444 1.1e-16 1.1e-16" and "span [3,1000) 1.1e-16".
+// Regression (analytic round-off residue): fixed in bbb3daf (trailing-span fix, round-off coverage snapped to 0). The
+// running sum of the cell deltas did not return to exactly 0 right of a shape, and the leftover (~1e-16) went to the
+// sink as coverage, as a span to the end of the row: the triangle (0,0) (1,1/3) (1/3,1) lies inside pixel (0,0)
+// (area 4/9), yet on a 1000-pixel-wide canvas row 0 got "row [0,3) 0.444 1.1e-16 1.1e-16" and
+// "span [3,1000) 1.1e-16". Guards: only pixel (0,0) gets coverage, and on random polygons every pixel of exact area 0
+// gets exactly 0.
 TEST(RasterContract, AnalyticCoverageIsExactlyZeroWhereNothingIsDrawn) {
   Path tri;
   tri.move_to(0, 0).line_to(1, 1.0 / 3).line_to(1.0 / 3, 1).close();

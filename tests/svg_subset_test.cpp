@@ -750,7 +750,7 @@ TEST(SvgDocument, LoadSvg) {
   } catch (const ParseError&) {
     FAIL() << "a missing file is not a parse error";
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()), "cannot read /nonexistent/dir/x.svg: No such file or directory");
+    EXPECT_EQ(std::string(e.what()), "cannot read SVG file '/nonexistent/dir/x.svg': No such file or directory");
   }
 
   const std::string path = ::testing::TempDir() + "svg_subset_test_load.svg";

@@ -45,6 +45,10 @@ bool is_bounded(CompositeOp op);
 template <class T>
 void blend_row(CompositeOp op, T* dst, const T* src, const float* coverage, const float* clip, int count);
 
+/// As blend_row with every coverage value equal to `alpha` (a layer's opacity): no coverage row needed.
+template <class T>
+void blend_row_alpha(CompositeOp op, T* dst, const T* src, float alpha, const float* clip, int count);
+
 /// A CoverageSink that paints with a Paint and an operator onto an ImageView. Coverage scales the source (the
 /// HTML canvas model: the shape is an image whose alpha is its coverage); for bounded operators this equals
 /// lerping by coverage. Decides once per span what it needs: an opaque solid span with source-over stores

@@ -91,12 +91,12 @@ struct Edge {
 };
 
 namespace detail {
-class BoundarySweep;
-class UnitWindingTest;
+class RasterizerImpl;  // src/raster/rasterizer_p.hpp: the buffers and stages behind this API
 }
 
 /// Scan converts flattened contours. Keeps its buffers between calls, so one Rasterizer per thread,
-/// reused across paths and frames, allocates nothing in steady state.
+/// reused across paths and frames, allocates nothing in steady state. (A moved-from Rasterizer may only be
+/// assigned to or destroyed.)
 class Rasterizer {
  public:
   Rasterizer();
@@ -123,54 +123,21 @@ class Rasterizer {
   static constexpr std::int64_t kMaskBlockLimit = std::int64_t{1} << 20;
 
   /// The clipped edges of the last fill() (for tests and tools).
-  const std::vector<Edge>& edges() const { return edges_; }
+  const std::vector<Edge>& edges() const;
 
   /// Analytic fills of paths whose box spans at most this many cells skip the edge table: each edge walks its
   /// own rows into a dense block (cheaper for glyph-sized paths; same coverage). 0 turns it off (tests use that
   /// to compare both paths).
-  void set_dense_limit(std::int64_t cells) { dense_limit_ = cells; }
+  void set_dense_limit(std::int64_t cells);
   static constexpr std::int64_t kDefaultDenseLimit = 8192;
 
   /// Exact fills of paths whose winding is only ever 0 and one other value take the analytic sweep, which is exact
   /// for them (same coverage up to round-off). false sends every exact fill through the boundary sweep (tests and
   /// the fuzzer use that to compare both paths).
-  void set_exact_shortcut(bool on) { exact_shortcut_ = on; }
+  void set_exact_shortcut(bool on);
 
  private:
-  void build_edges(const Polylines& lines, int width, int height);
-  void build_unclipped_edges(const Polylines& lines);
-  void clip_pieces(int width, int height);
-  void compute_row_range(int height);
-  void sweep_aliased(FillRule rule, int width, CoverageSink& sink);
-  void sweep_analytic(FillRule rule, int width, CoverageSink& sink);
-  bool sweep_dense(FillRule rule, int width, CoverageSink& sink);
-  void bucket_edges(bool by_sample_row);
-  void add_edge(Point top, Point bottom, int winding);
-  void add_clipped_segment(Point p, Point q, int width, int height);
-
-  std::vector<Edge> edges_;
-  std::vector<Edge> horizontals_;            // NonExterior: horizontal segments (they matter for connectivity)
-  std::vector<Edge> pieces_;                 // boundary pieces from the boundary sweep
-  int y_min_ = 0, y_max_ = 0;               // rows touched by edges_, [y_min_, y_max_)
-  std::vector<std::uint32_t> bucket_start_;  // edge table: edges starting in row r are order_[bucket_start_[r-y_min_] ..]
-  std::vector<std::uint32_t> order_;
-  std::vector<std::uint32_t> edge_row_;      // first row of each edge (relative to y_min_)
-  std::vector<std::uint32_t> cursor_;        // fill positions while bucketing
-  std::vector<std::uint32_t> active_;        // the active edge list (indices into edges_)
-  struct Crossing {
-    double x;
-    std::uint32_t edge;
-  };
-  std::vector<Crossing> crossings_;          // aliased sweep: active edges with their x at the sample row
-  std::vector<double> accumulation_;         // analytic sweep: one row of signed area deltas, width + 2 cells
-  std::vector<std::uint64_t> touched_;       // analytic sweep: one bit per cell written in the current row
-  std::vector<float> row_coverage_;          // coverage handed to the sink
-  std::vector<double> dense_block_;          // small paths: rows x columns of cells, zero between fills
-  std::vector<float> mask_cells_;            // fill_mask: rows x stride float cells, zero between fills
-  std::int64_t dense_limit_ = kDefaultDenseLimit;
-  bool exact_shortcut_ = true;
-  std::unique_ptr<detail::BoundarySweep> boundary_;
-  std::unique_ptr<detail::UnitWindingTest> unit_winding_;  // exact mode: whether analytic is already exact
+  std::unique_ptr<detail::RasterizerImpl> impl_;  // one allocation per Rasterizer, none per fill
 };
 
 }  // namespace vraster

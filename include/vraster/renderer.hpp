@@ -1,5 +1,9 @@
-// vraster: the fill entry point (Renderer) and the solid source-over compositor.
+// vraster: the coverage producer of every draw call (Renderer) and the solid source-over compositor.
 #pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
 
 #include "vraster/flatten.hpp"
 #include "vraster/image.hpp"
@@ -38,11 +42,47 @@ struct FillOptions {
   double tolerance = kDefaultTolerance;  ///< flattening tolerance in device pixels
 };
 
-/// Reusable state for filling paths onto an image: the flattening buffer and the rasterizer.
-/// One Renderer per thread; no global state.
+enum class HairlineMode : std::uint8_t;  // vraster/stroke.hpp
+
+namespace detail {
+struct RendererScratch;  // src/paint/renderer.cpp: buffers of hairlines and masks
+}
+
+/// The coverage side of the seam: turns paths, hairlines and coverage masks into CoverageSink calls on a
+/// width x height device, and never touches a pixel itself. Whoever draws hands it a compositor (paint +
+/// operator + target, possibly behind a clip) as the sink:
+///
+///   fill / stroke / hairlines / mask  ->  Renderer (flatten, rasterize)  ->  CoverageSink  ->  compositor -> pixels
+///
+/// Keeps the flattening buffer, the rasterizer and the hairline and mask buffers between calls: one Renderer per
+/// thread, reused for every draw call, allocates nothing for fills in steady state. No global state.
 class Renderer {
  public:
-  /// Fills `path`, mapped by `transform`, with `color` onto `image`.
+  Renderer();
+  ~Renderer();
+  Renderer(Renderer&&) noexcept;
+  Renderer& operator=(Renderer&&) noexcept;
+
+  /// Coverage of `path`, mapped by `transform`, on a width x height device.
+  void fill(const Path& path, const Affine& transform, const FillOptions& options, int width, int height,
+            CoverageSink& sink);
+
+  /// Coverage of every contour of `path`, mapped by `transform` and flattened at 0.1 px, drawn as 1-device-pixel
+  /// hairlines (see HairlineMode; vraster/stroke.hpp). Per-pixel algorithms hand over each pixel's summed
+  /// coverage (clamped to 1: a pixel hit twice counts once fully) in row order; Analytic hands over the
+  /// rasterizer's coverage of a 1-px butt-capped stroke. Coverage is multiplied by `coverage_scale` (clamped to
+  /// (0, 1]). Geometry far outside the device costs only the visible part.
+  void hairlines(const Path& path, const Affine& transform, HairlineMode mode, int width, int height,
+                 CoverageSink& sink, float coverage_scale = 1.0f);
+
+  /// Coverage from an 8-bit mask (255 = full) whose pixel (0, 0) lands on device pixel (x, y), clipped to the
+  /// width x height device: cached glyphs and other pre-rendered coverage take the same seam as paths.
+  void mask(const std::uint8_t* mask, int mask_width, int mask_height, std::ptrdiff_t stride, int x, int y, int width,
+            int height, CoverageSink& sink);
+
+  /// Convenience for tools and tests: fills `path`, mapped by `transform`, with one solid `color` source-over onto
+  /// `image` (fill() into a SolidCompositor). Drawing code with paints, operators or clips uses fill() with its
+  /// own compositor (or the Canvas).
   template <class T>
   void fill(BasicImage<T>& image, const Path& path, const Affine& transform, Color color, const FillOptions& options);
 
@@ -54,6 +94,7 @@ class Renderer {
  private:
   Polylines lines_;
   Rasterizer rasterizer_;
+  std::unique_ptr<detail::RendererScratch> scratch_;
 };
 
 }  // namespace vraster

@@ -27,6 +27,7 @@
 #include "cli/cli.hpp"
 #include "svg_subset/svg.hpp"
 #include "vraster/fxaa.hpp"
+#include "vraster/files.hpp"
 #include "vraster/stroke.hpp"
 #include "vraster/vraster.hpp"
 
@@ -238,9 +239,14 @@ void downscale(svg::Document& doc, int max_side) {
 }
 
 fs::path find_bench_scenes() {
-  if (const char* env = std::getenv("VRASTER_BENCH_SCENES")) return env;
-  std::vector<fs::path> bases{fs::current_path()};
   std::error_code ec;
+  if (const char* env = std::getenv("VRASTER_BENCH_SCENES")) {
+    if (!fs::is_directory(env, ec))
+      throw Error("accuracy: VRASTER_BENCH_SCENES=" + quoted(env, 1024) + " is not a directory");
+    return env;
+  }
+  std::vector<fs::path> bases;
+  if (fs::path cwd = fs::current_path(ec); !ec) bases.push_back(cwd);  // none when the directory was deleted
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec) bases.push_back(exe.parent_path());
   for (fs::path base : bases) {
@@ -369,7 +375,7 @@ std::string fmt(const char* f, double v) {
 }
 
 void draw_report_png(const std::vector<Scene>& scenes, const std::vector<std::vector<Result>>& results,
-                     const std::string& path) {
+                     OutputFile& file) {
   const int cell = 128, gap = 8;
   const int strip_w = kMethodCount * (cell + gap) + gap + 120;
   const int plot_w = std::max(strip_w, 900), plot_h = 560;
@@ -481,7 +487,7 @@ void draw_report_png(const std::vector<Scene>& scenes, const std::vector<std::ve
     }
     y += cell + 2 * gap + 12;
   }
-  write_png(path, img);
+  write_png(file, img);
 }
 
 // ---- the report ------------------------------------------------------------------------------------------------
@@ -602,6 +608,15 @@ int run_accuracy(int argc, char** argv) {
   }
   if (out_dir.empty()) throw UsageError{"accuracy: no output directory (-o DIR)"};
 
+  // The output first, so a bad -o fails before the measurements. Both files or neither: each goes to a
+  // temporary that is renamed only at the end, and a failed second rename takes the first file back.
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) throw Error("accuracy: cannot create directory " + quoted(out_dir, 1024) + ": " + ec.message());
+  const std::string md_path = (fs::path(out_dir) / "accuracy.md").string();
+  const std::string png_path = (fs::path(out_dir) / "accuracy.png").string();
+  OutputFile png_file(png_path), md_file(md_path);
+
   const auto start = Clock::now();
   std::vector<Scene> scenes;
   if (inputs.empty()) {
@@ -648,9 +663,6 @@ int run_accuracy(int argc, char** argv) {
     s.crop = {(s.doc.width - size) / 2, (s.doc.height - size) / 2, size};
   }
 
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec) throw Error("accuracy: cannot create directory '" + out_dir + "': " + ec.message());
 
   Renderer renderer;
   std::vector<std::vector<Result>> results(scenes.size(), std::vector<Result>(kMethodCount));
@@ -669,13 +681,15 @@ int run_accuracy(int argc, char** argv) {
               << fmt("%.1f", std::chrono::duration<double>(Clock::now() - start).count()) << " s)\n";
   }
   const double total = std::chrono::duration<double>(Clock::now() - start).count();
-  const std::string md_path = (fs::path(out_dir) / "accuracy.md").string();
-  const std::string png_path = (fs::path(out_dir) / "accuracy.png").string();
-  draw_report_png(scenes, results, png_path);
-  {
-    std::ofstream md(md_path);
-    md << write_markdown(scenes, results, command, total, frames, max_side);
-    if (!md) throw Error("accuracy: cannot write '" + md_path + "'");
+  draw_report_png(scenes, results, png_file);
+  const std::string markdown = write_markdown(scenes, results, command, total, frames, max_side);
+  std::fwrite(markdown.data(), 1, markdown.size(), md_file.stream());
+  png_file.commit();
+  try {
+    md_file.commit();
+  } catch (...) {
+    std::remove(png_path.c_str());
+    throw;
   }
   std::cout << "vraster accuracy: " << scenes.size() << " scenes x " << kMethodCount << " methods in "
             << fmt("%.1f", total) << " s; wrote " << md_path << " and " << png_path << "\n";

@@ -17,6 +17,12 @@ int run_fill_rules(int argc, char** argv);
 /// `vraster accuracy [SCENE.svg...] -o DIR [--frames N] [--max-side PX]` (src/cli/accuracy.cpp).
 int run_accuracy(int argc, char** argv);
 
+/// `vraster mesh IN -o OUT.png [...]`, `vraster shading -o SHEET.png`, `vraster depth -o SHEET.png`
+/// (src/cli/mesh.cpp).
+int run_mesh(int argc, char** argv);
+int run_shading(int argc, char** argv);
+int run_depth(int argc, char** argv);
+
 /// The embedded demo scene (SVG text).
 std::string_view demo_svg();
 

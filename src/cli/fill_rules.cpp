@@ -1,7 +1,7 @@
 // vraster fill-rules: the same drawing under every fill rule, side by side, optionally tinted by winding number.
 //
 //   1. read the SVG (svg_subset), scale it to a panel
-//   2. per rule: render every item with that rule into a panel image
+//   2. per rule: render every item with that rule into a panel image (--aa fxaa: then the FXAA post-filter)
 //   3. with --winding: tint each pixel by the winding number at its centre, and add a legend
 //   4. paste the panels into one sheet with labels drawn in the built-in bitmap font
 #include <algorithm>
@@ -14,6 +14,7 @@
 #include "cli/bitmap_font.hpp"
 #include "cli/cli.hpp"
 #include "svg_subset/svg.hpp"
+#include "vraster/fxaa.hpp"
 #include "vraster/vraster.hpp"
 
 namespace vraster::cli {
@@ -161,6 +162,7 @@ int run_fill_rules(int argc, char** argv) {
       const Color color = winding ? kInk.with_alpha(0.55f) : item.color;
       renderer.fill(panel, item.path, to_panel * item.transform, color, options);
     }
+    if (aa == AntiAlias::Fxaa) fxaa(panel);  // the rasterizer draws fxaa aliased: the filter finishes each panel
     const int ox = margin + (k % columns) * cell_w, oy = margin + (k / columns) * cell_h;
     paste(sheet, panel, ox, oy);
     frame(sheet, ox, oy, pw, ph);

@@ -17,6 +17,7 @@
 #include "cli/image_compare.hpp"
 #include "svg_subset/svg.hpp"
 #include "vraster/fxaa.hpp"
+#include "vraster/files.hpp"
 #include "vraster/vraster.hpp"
 #if VRASTER_WITH_TEXT
 #include "vraster_text/cli.hpp"
@@ -37,6 +38,11 @@ constexpr const char* kUsage =
     "               [--margin PX]\n"
     "  vraster accuracy [SCENE.svg...] -o DIR [--frames N] [--max-side PX]   (AA methods: time vs error)\n"
     "  vraster compare REFERENCE.png OURS.png [--diff DIFF.png]   (the conformance pass rule)\n"
+    "  vraster mesh IN.vmesh|IN.obj -o OUT.png [--shading flat|gouraud|phong] [--depth zbuffer|painter|none]\n"
+    "               [--aa] [--cull] [--camera ortho|perspective] [--yaw DEG] [--pitch DEG] [--distance D]\n"
+    "               [--width PX] [--height PX] [--bits 8|16] [--background #rrggbb|transparent]\n"
+    "  vraster shading -o SHEET.png [--panel PX] [--aa]   (flat / Gouraud / Phong on a sphere and a torus)\n"
+    "  vraster depth -o SHEET.png [--panel PX] [--aa]     (painter's algorithm beside the z-buffer)\n"
     "  vraster demo [-o FILE]\n"
     "MODE: none | analytic | exact | ssaa-2|4|8|16 | msaa-4|8|16 | fxaa\n"
     "RULE: evenodd | nonzero | nonexterior | positive | negative | abs-geq-2 (overrides the file's fill-rule)\n";
@@ -222,6 +228,7 @@ int run_demo(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   using namespace vraster;
+  install_output_cleanup_handlers();  // a signal or timeout while writing leaves no partial file
   try {
     if (argc < 2) throw cli::UsageError{"no command given"};
     const std::string_view command = argv[1];
@@ -230,6 +237,9 @@ int main(int argc, char** argv) {
     if (command == "compare") return cli::run_compare(argc, argv);
     if (command == "fill-rules") return cli::run_fill_rules(argc, argv);
     if (command == "accuracy") return cli::run_accuracy(argc, argv);
+    if (command == "mesh") return cli::run_mesh(argc, argv);
+    if (command == "shading") return cli::run_shading(argc, argv);
+    if (command == "depth") return cli::run_depth(argc, argv);
 #if VRASTER_WITH_TEXT
     if (command == "text") return text::run_text_command(argc, argv);
 #endif

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "vraster/error.hpp"
+#include "vraster/files.hpp"
 
 namespace vraster {
 namespace {
@@ -28,27 +29,28 @@ struct ErrorState {
 
 void on_png_warning(png_structp, png_const_charp) {}
 
-// Straight (un-premultiplied) big-endian rows ready for libpng.
+// One row as straight (un-premultiplied) big-endian RGBA for libpng.
 template <class T>
-std::vector<png_byte> straight_bytes(const BasicImage<T>& image) {
+void straight_row(const BasicImage<T>& image, int y, png_byte* out) {
   constexpr std::uint32_t kMax = BasicImage<T>::kMax;
-  std::vector<png_byte> out(image.data.size() * sizeof(T));
+  const T* px = image.pixel(0, y);
   std::size_t o = 0;
-  for (std::size_t i = 0; i < image.data.size(); i += 4) {
-    const std::uint32_t a = image.data[i + 3];
+  for (int x = 0; x < image.width; ++x, px += 4) {
+    const std::uint32_t a = px[3];
     for (int c = 0; c < 4; ++c) {
-      std::uint32_t v = image.data[i + c];
+      std::uint32_t v = px[c];
       if (c < 3) v = a == 0 ? 0 : static_cast<std::uint32_t>((std::uint64_t{v} * kMax + a / 2) / a);
       if (v > kMax) v = kMax;
       if constexpr (sizeof(T) == 2) out[o++] = static_cast<png_byte>(v >> 8);
       out[o++] = static_cast<png_byte>(v & 0xFF);
     }
   }
-  return out;
 }
 
-// Returns false and fills `state` on a libpng error.
-bool write_rows(FILE* file, int width, int height, int depth, png_byte* bytes, ErrorState& state) {
+// Returns false and fills `state` on a libpng error. Rows are converted one at a time into `row` (one row of
+// memory beside the image, not a second copy of it).
+template <class T>
+bool write_rows(FILE* file, const BasicImage<T>& image, png_byte* row, ErrorState& state) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, on_png_error, on_png_warning);
   if (!png) return false;
   png_infop info = png_create_info_struct(png);
@@ -57,34 +59,35 @@ bool write_rows(FILE* file, int width, int height, int depth, png_byte* bytes, E
     return false;
   }
   png_init_io(png, file);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), depth,
-               PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height),
+               8 * static_cast<int>(sizeof(T)), PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
-  const std::size_t stride = static_cast<std::size_t>(width) * 4 * (depth / 8);
-  for (int y = 0; y < height; ++y) png_write_row(png, bytes + stride * static_cast<std::size_t>(y));
+  for (int y = 0; y < image.height; ++y) {
+    straight_row(image, y, row);
+    png_write_row(png, row);
+  }
   png_write_end(png, info);
   png_destroy_write_struct(&png, &info);
   return true;
 }
 
 template <class T>
-void write_png_any(const std::string& path, const BasicImage<T>& image) {
-  std::vector<png_byte> bytes = straight_bytes(image);
-  const std::string temp = path + ".partial";
-  FILE* file = std::fopen(temp.c_str(), "wb");
-  if (!file) throw Error("cannot write " + path + ": " + std::strerror(errno));
+void encode_png(OutputFile& file, const BasicImage<T>& image) {
+  std::vector<png_byte> row(static_cast<std::size_t>(image.width) * 4 * sizeof(T));
   ErrorState state;
-  const bool ok = write_rows(file, image.width, image.height, 8 * sizeof(T), bytes.data(), state);
-  const bool closed = std::fclose(file) == 0;
-  if (!ok || !closed) {
-    std::remove(temp.c_str());
-    throw Error("cannot write " + path + ": " + (ok ? std::string("write failed") : std::string(state.message)));
+  if (!write_rows(file.stream(), image, row.data(), state)) {
+    // libpng says only "Write Error" when fwrite fails; errno says why (no space, file too large).
+    const std::string reason = std::ferror(file.stream()) ? std::strerror(errno) : state.message;
+    throw Error("cannot write " + quoted(file.path(), 1024) + ": " + reason);
   }
-  if (std::rename(temp.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    std::remove(temp.c_str());
-    throw Error("cannot write " + path + ": " + reason);
-  }
+}
+
+template <class T>
+void write_png_any(const std::string& path, const BasicImage<T>& image) {
+  OutputFile file(path);
+  encode_png(file, image);
+  file.commit();
 }
 
 struct Decoded {
@@ -164,6 +167,8 @@ BasicImage<T> read_png_any(const std::string& path) {
 }  // namespace
 
 void write_png(const std::string& path, const Image& image) { write_png_any(path, image); }
+void write_png(OutputFile& file, const Image& image) { encode_png(file, image); }
+void write_png(OutputFile& file, const Image16& image) { encode_png(file, image); }
 void write_png(const std::string& path, const Image16& image) { write_png_any(path, image); }
 Image read_png(const std::string& path) { return read_png_any<std::uint8_t>(path); }
 Image16 read_png16(const std::string& path) { return read_png_any<std::uint16_t>(path); }

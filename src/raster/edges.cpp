@@ -2,11 +2,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "raster/rasterizer_p.hpp"
 #include "vraster/raster.hpp"
 
 namespace vraster {
 
-void Rasterizer::add_edge(Point top, Point bottom, int winding) {
+void detail::RasterizerImpl::add_edge(Point top, Point bottom, int winding) {
   if (!(bottom.y > top.y)) return;  // horizontal (or degenerate after clipping): contributes nothing
   const double dxdy = (bottom.x - top.x) / (bottom.y - top.y);
   edges_.push_back({top.x, top.y, bottom.x, bottom.y, std::isfinite(dxdy) ? dxdy : 0.0, winding});
@@ -15,7 +16,7 @@ void Rasterizer::add_edge(Point top, Point bottom, int winding) {
 // Clips segment p -> q to the device rectangle [0, width] x [0, height] and records what is left:
 //  - parts above or below the rectangle, or right of it, change no pixel inside: dropped;
 //  - parts left of it still change the winding of every pixel to their right: kept as vertical edges at x = 0.
-void Rasterizer::add_clipped_segment(Point p, Point q, int width, int height) {
+void detail::RasterizerImpl::add_clipped_segment(Point p, Point q, int width, int height) {
   if (p.y == q.y) return;
   const int winding = q.y > p.y ? 1 : -1;
   Point a = winding > 0 ? p : q;  // top
@@ -60,7 +61,7 @@ void Rasterizer::add_clipped_segment(Point p, Point q, int width, int height) {
   }
 }
 
-void Rasterizer::build_edges(const Polylines& lines, int width, int height) {
+void detail::RasterizerImpl::build_edges(const Polylines& lines, int width, int height) {
   edges_.clear();
   if (lines.points.empty()) {
     y_min_ = y_max_ = 0;
@@ -92,7 +93,7 @@ void Rasterizer::build_edges(const Polylines& lines, int width, int height) {
   }
 }
 
-void Rasterizer::compute_row_range(int height) {
+void detail::RasterizerImpl::compute_row_range(int height) {
   y_min_ = height;
   y_max_ = 0;
   for (const Edge& e : edges_) {
@@ -104,7 +105,7 @@ void Rasterizer::compute_row_range(int height) {
 }
 
 // All segments as edges, unclipped; horizontal ones kept apart (NonExterior needs both).
-void Rasterizer::build_unclipped_edges(const Polylines& lines) {
+void detail::RasterizerImpl::build_unclipped_edges(const Polylines& lines) {
   edges_.clear();
   horizontals_.clear();
   lines.for_each_segment([&](Point p, Point q) {
@@ -119,7 +120,7 @@ void Rasterizer::build_unclipped_edges(const Polylines& lines) {
 }
 
 // Replaces the edges by the boundary pieces, clipped to the image.
-void Rasterizer::clip_pieces(int width, int height) {
+void detail::RasterizerImpl::clip_pieces(int width, int height) {
   edges_.clear();
   for (const Edge& e : pieces_) {
     const Point top{e.x0, e.y0}, bottom{e.x1, e.y1};
@@ -135,7 +136,7 @@ void Rasterizer::clip_pieces(int width, int height) {
 // Edge table: a counting sort of the edges by the first row they take part in.
 //  analytic: the row containing the edge's top, floor(y0);
 //  aliased:  the first row whose sample line y = r + 0.5 the edge crosses, ceil(y0 - 0.5) (half-open [y0, y1)).
-void Rasterizer::bucket_edges(bool by_sample_row) {
+void detail::RasterizerImpl::bucket_edges(bool by_sample_row) {
   const int rows = std::max(y_max_ - y_min_, 0);
   bucket_start_.assign(static_cast<std::size_t>(rows) + 2, 0);
   edge_row_.resize(edges_.size());

@@ -17,6 +17,7 @@
 
 #include "raster/cells.hpp"
 #include "vraster/error.hpp"
+#include "raster/rasterizer_p.hpp"
 #include "vraster/raster.hpp"
 
 namespace vraster {
@@ -252,8 +253,8 @@ void clear_rows(std::uint8_t* mask, std::ptrdiff_t stride, int width, int from, 
 
 }  // namespace
 
-void Rasterizer::fill_mask(const Polylines& lines, FillRule rule, int width, int height, std::uint8_t* mask,
-                           std::ptrdiff_t stride) {
+void detail::RasterizerImpl::fill_mask(const Polylines& lines, FillRule rule, int width, int height,
+                                       std::uint8_t* mask, std::ptrdiff_t stride) {
   if (width <= 0 || height <= 0) return;
   if (!mask) throw Error("fill_mask: the mask is null");
   if (stride < width) throw Error("fill_mask: the stride is smaller than the width");
@@ -277,7 +278,7 @@ void Rasterizer::fill_mask(const Polylines& lines, FillRule rule, int width, int
   const int row_lo = inside ? static_cast<int>(std::max(y_lo, 0.0)) : 0;
   const int row_hi = inside ? static_cast<int>(std::ceil(std::min(y_hi, h))) : 0;
   const std::int64_t cells = padded_cells * (row_hi - row_lo);
-  if (!inside || rule == FillRule::NonExterior || cells > kMaskBlockLimit) {
+  if (!inside || rule == FillRule::NonExterior || cells > Rasterizer::kMaskBlockLimit) {
     clear_rows(mask, stride, width, 0, height);
     ByteMaskSink sink(mask, stride);
     fill(lines, rule, AntiAlias::Analytic, width, height, sink);

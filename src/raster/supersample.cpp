@@ -13,8 +13,8 @@
 // Counts go into a difference array (one add at each end of a stretch), so a stretch costs O(1) however wide;
 // the prefix sum at the end of the row turns them into counts. Everything per row is O(edges + touched pixels).
 //
-// Scratch buffers are per thread (thread_local) and reused: no allocation in steady state, and no change to the
-// Rasterizer's layout (which this file does not own).
+// Scratch buffers are per thread (thread_local) and reused: no allocation in steady state (the Rasterizer's own
+// buffers are in raster/rasterizer_p.hpp).
 #include "raster/supersample.hpp"
 
 #include <algorithm>

@@ -14,6 +14,7 @@
 #include "raster/cells.hpp"
 #include "raster/supersample.hpp"
 #include "raster/unit_winding.hpp"
+#include "raster/rasterizer_p.hpp"
 #include "vraster/raster.hpp"
 
 namespace vraster {
@@ -127,7 +128,7 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
 
 }  // namespace
 
-bool Rasterizer::sweep_dense(FillRule rule, int width, CoverageSink& sink) {
+bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, CoverageSink& sink) {
   if (edges_.empty() || dense_limit_ <= 0) return false;
   double x_lo = edges_[0].x0, x_hi = x_lo;
   for (const Edge& e : edges_) {
@@ -150,7 +151,7 @@ bool Rasterizer::sweep_dense(FillRule rule, int width, CoverageSink& sink) {
   return true;
 }
 
-void Rasterizer::sweep_analytic(FillRule rule, int width, CoverageSink& sink) {
+void detail::RasterizerImpl::sweep_analytic(FillRule rule, int width, CoverageSink& sink) {
   if (sweep_dense(rule, width, sink)) return;
   bucket_edges(false);
   const std::size_t cells = static_cast<std::size_t>(width) + 2;
@@ -170,7 +171,7 @@ void Rasterizer::sweep_analytic(FillRule rule, int width, CoverageSink& sink) {
 // y0 <= y + 0.5 < y1 (so a vertex on a sample line counts once and horizontal edges never do); a pixel is inside
 // when its centre lies in [left crossing, right crossing) (top-left rule: of two shapes sharing an edge exactly
 // one owns each pixel centre on it).
-void Rasterizer::sweep_aliased(FillRule rule, int width, CoverageSink& sink) {
+void detail::RasterizerImpl::sweep_aliased(FillRule rule, int width, CoverageSink& sink) {
   bucket_edges(true);
   active_.clear();
   for (int y = y_min_; y < y_max_; ++y) {
@@ -222,29 +223,40 @@ void Rasterizer::sweep_aliased(FillRule rule, int width, CoverageSink& sink) {
   }
 }
 
-Rasterizer::Rasterizer()
-    : boundary_(std::make_unique<detail::BoundarySweep>()), unit_winding_(std::make_unique<detail::UnitWindingTest>()) {}
+Rasterizer::Rasterizer() : impl_(std::make_unique<detail::RasterizerImpl>()) {}
 Rasterizer::~Rasterizer() = default;
 Rasterizer::Rasterizer(Rasterizer&&) noexcept = default;
 Rasterizer& Rasterizer::operator=(Rasterizer&&) noexcept = default;
 
 void Rasterizer::fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
                       CoverageSink& sink) {
+  impl_->fill(lines, rule, aa, width, height, sink);
+}
+void Rasterizer::fill_mask(const Polylines& lines, FillRule rule, int width, int height, std::uint8_t* mask,
+                           std::ptrdiff_t stride) {
+  impl_->fill_mask(lines, rule, width, height, mask, stride);
+}
+const std::vector<Edge>& Rasterizer::edges() const { return impl_->edges_; }
+void Rasterizer::set_dense_limit(std::int64_t cells) { impl_->dense_limit_ = cells; }
+void Rasterizer::set_exact_shortcut(bool on) { impl_->exact_shortcut_ = on; }
+
+void detail::RasterizerImpl::fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
+                                  CoverageSink& sink) {
   if (width <= 0 || height <= 0) return;
   if (rule == FillRule::NonExterior) {
     // The boundary of the non-exterior region, then a non-zero fill of it in the requested mode.
     build_unclipped_edges(lines);
     pieces_.clear();
-    boundary_->extract(edges_, horizontals_, rule, pieces_);
+    boundary_.extract(edges_, horizontals_, rule, pieces_);
     clip_pieces(width, height);
     rule = FillRule::NonZero;
   } else {
     build_edges(lines, width, height);
-    if (aa == AntiAlias::Exact && !(exact_shortcut_ && (*unit_winding_)(edges_))) {
+    if (aa == AntiAlias::Exact && !(exact_shortcut_ && unit_winding_(edges_))) {
       // Only the boundary of the filled region, accumulated row by row as the sweep finds it: its pieces never
       // cross, so the accumulation is exact. (Where the winding is only ever 0 or one other value, analytic is
       // already exact: the shapes most scenes are made of take that path.)
-      if (!edges_.empty()) boundary_->fill(edges_, rule, width, sink);
+      if (!edges_.empty()) boundary_.fill(edges_, rule, width, sink);
       return;
     }
   }

@@ -75,78 +75,13 @@ std::string_view to_string(HairlineMode mode) {
   return "?";
 }
 
-void draw_hairlines(Image& image, const Path& path, const Affine& transform, Color color, HairlineMode mode,
-                    float coverage_scale) {
-  if (!(color.a > 0) || !(coverage_scale > 0) || path.empty() || image.width <= 0 || image.height <= 0) return;
-  const Color c = color.with_alpha(std::min(coverage_scale, 1.0f));
-  const Path device = path.transformed(transform);
-  std::vector<StrokePolyline> pieces;
-  const Rect clip{-2, -2, image.width + 2.0, image.height + 2.0};
-  flatten_for_stroke_clipped(device, kHairlineTolerance, clip, pieces);
-  switch (mode) {
-    case HairlineMode::Bresenham:
-    case HairlineMode::Dda: {
-      PixelBlender blender(image, c);
-      for (const StrokePolyline& pl : pieces) {
-        walk_aliased(pl, image.width, image.height, mode == HairlineMode::Dda,
-                     [&](int x, int y) { blender.blend_full(x, y); });
-      }
-      break;
-    }
-    case HairlineMode::Wu: {
-      PixelBlender blender(image, c);
-      for (const StrokePolyline& pl : pieces) {
-        const std::size_t n = pl.points.size();
-        const std::size_t segs = n < 2 ? 0 : (pl.closed ? n : n - 1);
-        for (std::size_t i = 0; i < segs; ++i) {
-          wu_line(pl.points[i], pl.points[(i + 1) % n], image.width, image.height,
-                  [&](int x, int y, float cov) { blender.blend(x, y, cov); });
-        }
-      }
-      break;
-    }
-    case HairlineMode::Analytic: {
-      StrokeStyle style;
-      style.width = 1;
-      style.cap = LineCap::Butt;
-      style.join = LineJoin::Bevel;
-      Path outline;
-      stroke_polylines(pieces, style, kHairlineTolerance, outline);
-      Renderer renderer;
-      renderer.fill(image, outline, Affine{}, c, FillOptions{FillRule::NonZero, AntiAlias::Analytic, kHairlineTolerance});
-      break;
-    }
-  }
-}
-
 namespace {
 
-// Scales every coverage value on its way to another sink.
-class ScaledSink final : public CoverageSink {
- public:
-  ScaledSink(CoverageSink& out, float scale) : out_(out), scale_(scale) {}
-  void span(int y, int x0, int x1, float coverage) override { out_.span(y, x0, x1, coverage * scale_); }
-  void row(int y, int x0, int x1, const float* coverage) override {
-    buf_.assign(coverage, coverage + (x1 - x0));
-    for (float& c : buf_) c *= scale_;
-    out_.row(y, x0, x1, buf_.data());
-  }
-
- private:
-  CoverageSink& out_;
-  float scale_;
-  std::vector<float> buf_;
-};
-
-struct PixelHit {
-  int y, x;
-  float coverage;
-};
-
 // Sorts the hits into rows, merges repeated pixels (sum, clamped to 1) and emits runs of adjacent pixels.
-void emit_hits(std::vector<PixelHit>& hits, float scale, CoverageSink& sink) {
-  std::sort(hits.begin(), hits.end(), [](const PixelHit& a, const PixelHit& b) { return a.y != b.y ? a.y < b.y : a.x < b.x; });
-  std::vector<float> run;
+void emit_hits(std::vector<detail::RendererScratch::PixelHit>& hits, std::vector<float>& run, float scale,
+               CoverageSink& sink) {
+  using Hit = detail::RendererScratch::PixelHit;
+  std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) { return a.y != b.y ? a.y < b.y : a.x < b.x; });
   std::size_t i = 0;
   while (i < hits.size()) {
     const int y = hits[i].y, x0 = hits[i].x;
@@ -169,48 +104,78 @@ void emit_hits(std::vector<PixelHit>& hits, float scale, CoverageSink& sink) {
   }
 }
 
+// Scales every coverage value on its way to another sink.
+class ScaledSink final : public CoverageSink {
+ public:
+  ScaledSink(CoverageSink& out, float scale, std::vector<float>& buf) : out_(out), scale_(scale), buf_(buf) {}
+  void span(int y, int x0, int x1, float coverage) override { out_.span(y, x0, x1, coverage * scale_); }
+  void row(int y, int x0, int x1, const float* coverage) override {
+    buf_.assign(coverage, coverage + (x1 - x0));
+    for (float& c : buf_) c *= scale_;
+    out_.row(y, x0, x1, buf_.data());
+  }
+
+ private:
+  CoverageSink& out_;
+  float scale_;
+  std::vector<float>& buf_;
+};
+
 }  // namespace
 
-void hairline_coverage(const Path& path, const Affine& transform, HairlineMode mode, int width, int height,
-                       CoverageSink& sink, float coverage_scale) {
+void Renderer::hairlines(const Path& path, const Affine& transform, HairlineMode mode, int width, int height,
+                         CoverageSink& sink, float coverage_scale) {
   if (!(coverage_scale > 0) || path.empty() || width <= 0 || height <= 0) return;
   const float scale = std::min(coverage_scale, 1.0f);
+  detail::RendererScratch& s = *scratch_;
   const Path device = path.transformed(transform);
-  std::vector<StrokePolyline> pieces;
+  s.pieces.clear();
   const Rect clip{-2, -2, width + 2.0, height + 2.0};
-  flatten_for_stroke_clipped(device, kHairlineTolerance, clip, pieces);
+  flatten_for_stroke_clipped(device, kHairlineTolerance, clip, s.pieces);
   if (mode == HairlineMode::Analytic) {
     StrokeStyle style;
     style.width = 1;
     style.join = LineJoin::Bevel;
-    Path outline;
-    stroke_polylines(pieces, style, kHairlineTolerance, outline);
-    Polylines lines;
-    FlattenOptions fo;
-    fo.tolerance = kHairlineTolerance;
-    fo.clip = &clip;
-    flatten(outline, Affine{}, fo, lines);
-    Rasterizer rasterizer;
-    ScaledSink scaled(sink, scale);
-    rasterizer.fill(lines, FillRule::NonZero, AntiAlias::Analytic, width, height, scaled);
+    s.outline.clear();
+    stroke_polylines(s.pieces, style, kHairlineTolerance, s.outline);
+    const Polylines& lines = flatten_for_fill(s.outline, Affine{}, kHairlineTolerance, width, height);
+    if (scale == 1.0f) {
+      rasterizer_.fill(lines, FillRule::NonZero, AntiAlias::Analytic, width, height, sink);
+    } else {
+      ScaledSink scaled(sink, scale, s.run);
+      rasterizer_.fill(lines, FillRule::NonZero, AntiAlias::Analytic, width, height, scaled);
+    }
     return;
   }
-  std::vector<PixelHit> hits;
-  // The same pixels as draw_hairlines, kept as a list (memory proportional to the pixels drawn).
-  for (const StrokePolyline& pl : pieces) {
+  // Per-pixel algorithms: the pixels are collected (memory proportional to the pixels drawn), then handed over in
+  // row order.
+  s.hits.clear();
+  for (const StrokePolyline& pl : s.pieces) {
     if (mode == HairlineMode::Wu) {
       const std::size_t n = pl.points.size();
       const std::size_t segs = n < 2 ? 0 : (pl.closed ? n : n - 1);
       for (std::size_t i = 0; i < segs; ++i) {
         wu_line(pl.points[i], pl.points[(i + 1) % n], width, height,
-                [&](int x, int y, float cov) { hits.push_back({y, x, cov}); });
+                [&](int x, int y, float cov) { s.hits.push_back({y, x, cov}); });
       }
       continue;
     }
-    auto plot = [&](int x, int y) { hits.push_back({y, x, 1.0f}); };
-    walk_aliased(pl, width, height, mode == HairlineMode::Dda, plot);
+    walk_aliased(pl, width, height, mode == HairlineMode::Dda, [&](int x, int y) { s.hits.push_back({y, x, 1.0f}); });
   }
-  emit_hits(hits, scale, sink);
+  emit_hits(s.hits, s.run, scale, sink);
+}
+
+void hairline_coverage(const Path& path, const Affine& transform, HairlineMode mode, int width, int height,
+                       CoverageSink& sink, float coverage_scale) {
+  Renderer renderer;
+  renderer.hairlines(path, transform, mode, width, height, sink, coverage_scale);
+}
+
+void draw_hairlines(Image& image, const Path& path, const Affine& transform, Color color, HairlineMode mode,
+                    float coverage_scale) {
+  if (!(color.a > 0)) return;
+  SolidCompositor<std::uint8_t> compositor(image, color);
+  hairline_coverage(path, transform, mode, image.width, image.height, compositor, coverage_scale);
 }
 
 namespace {
@@ -253,7 +218,9 @@ void stroke_path(BasicImage<T>& image, const Path& path, const Affine& transform
       mode = HairlineMode::Analytic;
     }
     if constexpr (std::is_same_v<T, std::uint8_t>) {
-      draw_hairlines(image, centre_lines, transform, color, mode, static_cast<float>(device_width));
+      SolidCompositor<std::uint8_t> compositor(image, color);
+      renderer.hairlines(centre_lines, transform, mode, image.width, image.height, compositor,
+                         static_cast<float>(device_width));
     } else {
       // Deeper images: the analytic 1-px stroke (the per-pixel algorithms write 8-bit pixels).
       std::vector<StrokePolyline> pieces;

@@ -26,3 +26,20 @@ namespace vraster {
 std::vector<double> normalize_dashes(const std::vector<double>& dashes);
 
 }  // namespace vraster
+
+namespace vraster::detail {
+
+/// The buffers a Renderer keeps for hairlines and coverage masks (kept between calls).
+struct RendererScratch {
+  struct PixelHit {
+    int y, x;
+    float coverage;
+  };
+  std::vector<StrokePolyline> pieces;  // hairlines: device-space polylines
+  std::vector<PixelHit> hits;          // hairlines: per-pixel coverage before sorting into rows
+  std::vector<float> run;              // hairlines: one run of adjacent pixels
+  Path outline;                        // analytic hairlines: the 1-px stroke outline
+  std::vector<float> row;              // masks: one row of coverage
+};
+
+}  // namespace vraster::detail

@@ -25,6 +25,7 @@
 #include "css.hpp"
 #include "svg_subset/svg.hpp"
 #include "svg_subset/tree.hpp"
+#include "vraster/files.hpp"
 
 namespace vraster::svg {
 
@@ -1661,14 +1662,8 @@ Document to_document(const Tree& tree) {
 Document parse_svg(std::string_view text, const std::string& file) { return to_document(parse_svg_tree(text, file)); }
 
 Document load_svg(const std::string& path) {
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!file) throw Error("cannot read " + path + ": " + std::strerror(errno));
-  std::string text;
-  char chunk[1 << 16];
-  std::size_t n = 0;
-  while ((n = std::fread(chunk, 1, sizeof chunk, file.get())) > 0) text.append(chunk, n);
-  if (std::ferror(file.get())) throw Error("cannot read " + path + ": " + std::strerror(errno));
-  return parse_svg(text, path);
+  const std::vector<std::uint8_t> bytes = read_file_limited(path, kMaxSvgFileBytes, "SVG file");
+  return parse_svg(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path);
 }
 
 }  // namespace vraster::svg

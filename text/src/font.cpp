@@ -7,12 +7,28 @@
 
 #include "font_impl.hpp"
 #include FT_OUTLINE_H
+#include FT_TRUETYPE_TABLES_H
+#include FT_TRUETYPE_TAGS_H
 #include "vraster/error.hpp"
+#include "vraster/files.hpp"
 
 namespace vraster::text {
 namespace {
 
 std::atomic<std::uint64_t> next_font_id{1};
+
+// FreeType's own table of error messages (FT_Error_String returns null unless FreeType was built with error
+// strings, which Debian's is not): fterrors.h expands FT_ERRORDEF once per error when re-included like this.
+#undef FTERRORS_H_
+#define FT_ERRORDEF(e, v, s) {v, s},
+#define FT_ERROR_START_LIST {
+#define FT_ERROR_END_LIST {0, nullptr}};
+struct FreeTypeErrorText {
+  int code;
+  const char* text;
+};
+const FreeTypeErrorText kFreeTypeErrors[] =
+#include FT_ERRORS_H
 
 std::string ft_error_text(FT_Error e) {
   switch (e) {
@@ -24,7 +40,45 @@ std::string ft_error_text(FT_Error e) {
     default: break;
   }
   if (const char* s = FT_Error_String(e)) return s;
+  for (const FreeTypeErrorText& t : kFreeTypeErrors) {
+    if (t.text && t.code == e) return t.text;
+  }
   return "FreeType error " + std::to_string(e);
+}
+
+std::uint32_t read_u16(const std::uint8_t* p) { return std::uint32_t{p[0]} << 8 | p[1]; }
+std::uint32_t read_u32(const std::uint8_t* p) { return read_u16(p) << 16 | read_u16(p + 2); }
+
+/// A TrueType font's loca table must hold num_glyphs + 1 non-decreasing offsets, none past the end of glyf.
+/// FreeType tolerates a broken one by giving the glyphs it cannot place no outline, which would draw blank text
+/// with no error; checking it once at load turns that into a message.
+void check_glyph_locations(FT_Face face, const std::string& name) {
+  FT_ULong loca_length = 0, glyf_length = 0;
+  if (FT_Load_Sfnt_Table(face, TTAG_loca, 0, nullptr, &loca_length) != 0) return;  // no loca: not glyf-based
+  if (FT_Load_Sfnt_Table(face, TTAG_glyf, 0, nullptr, &glyf_length) != 0) {
+    throw Error("font " + quoted(name, 1024) + ": has a loca table but no glyf table");
+  }
+  const auto* head = static_cast<const TT_Header*>(FT_Get_Sfnt_Table(face, FT_SFNT_HEAD));
+  if (!head) return;
+  const bool long_offsets = head->Index_To_Loc_Format != 0;
+  const std::size_t count = static_cast<std::size_t>(face->num_glyphs) + 1;
+  const std::size_t entry = long_offsets ? 4 : 2;
+  if (loca_length < count * entry) {
+    throw Error("font " + quoted(name, 1024) + ": the loca table is too short for " +
+                std::to_string(face->num_glyphs) + " glyphs (corrupt font)");
+  }
+  std::vector<std::uint8_t> loca(loca_length);
+  if (FT_Load_Sfnt_Table(face, TTAG_loca, 0, loca.data(), &loca_length) != 0) return;
+  std::uint64_t previous = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint64_t offset = long_offsets ? read_u32(&loca[i * 4]) : std::uint64_t{read_u16(&loca[i * 2])} * 2;
+    if (offset < previous || offset > glyf_length) {
+      throw Error("font " + quoted(name, 1024) + ": the loca table is corrupt (the offset of glyph " +
+                  std::to_string(i) + " is " + (offset < previous ? "before the previous glyph's" : "past the glyf table") +
+                  ")");
+    }
+    previous = offset;
+  }
 }
 
 struct DecomposeState {
@@ -91,8 +145,12 @@ Font::Impl::~Impl() {
 }
 
 bool Font::Impl::load(std::uint32_t glyph, FT_Int32 flags) {
-  if (glyph >= static_cast<std::uint32_t>(face->num_glyphs)) return false;
-  if (FT_Load_Glyph(face, glyph, flags) != 0) return false;
+  if (glyph >= static_cast<std::uint32_t>(face->num_glyphs) || !FT_IS_SCALABLE(face)) return false;
+  // A glyph the font lists but FreeType cannot load means corrupt glyph data: an error, not a blank glyph.
+  if (const FT_Error e = FT_Load_Glyph(face, glyph, flags); e != 0) {
+    throw Error("font " + quoted(name, 1024) + ": glyph " + std::to_string(glyph) + " cannot be loaded: " +
+                ft_error_text(e));
+  }
   return face->glyph->format == FT_GLYPH_FORMAT_OUTLINE;
 }
 
@@ -112,6 +170,7 @@ std::shared_ptr<Font> Font::open(std::unique_ptr<Impl> impl, int face_index) {
   if (impl->face->units_per_EM == 0 && FT_IS_SCALABLE(impl->face)) {
     throw Error("font '" + impl->name + "': units per em is 0 (corrupt head table)");
   }
+  check_glyph_locations(impl->face, impl->name);
   hb_blob_t* blob = hb_blob_create(reinterpret_cast<const char*>(impl->bytes.data()),
                                    static_cast<unsigned>(impl->bytes.size()), HB_MEMORY_MODE_READONLY, nullptr, nullptr);
   hb_face_t* face = hb_face_create(blob, static_cast<unsigned>(face_index));
@@ -125,14 +184,9 @@ std::shared_ptr<Font> Font::open(std::unique_ptr<Impl> impl, int face_index) {
 }
 
 std::shared_ptr<Font> Font::load_file(const std::string& path, int face_index) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw Error("font '" + path + "': is a directory, not a font file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("font '" + path + "': cannot open the file");
   auto impl = std::make_unique<Impl>();
-  impl->owned.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  if (in.bad()) throw Error("font '" + path + "': read error");
-  if (impl->owned.empty()) throw Error("font '" + path + "': the file is empty");
+  impl->owned = read_file_limited(path, kMaxFontFileBytes, "font");
+  if (impl->owned.empty()) throw Error("font " + quoted(path, 1024) + ": the file is empty");
   impl->bytes = impl->owned;
   impl->name = path;
   return open(std::move(impl), face_index);

@@ -3,8 +3,10 @@
 //   1. per glyph:  outline (font units, cached per glyph in the Font) -> device transform
 //   2a. axis-aligned transform, size <= kMaxCachedGlyphSize, caching on:
 //        pen x rounded to 1/phases px, y to 1 px -> cache key -> mask (on a miss: flatten -> Rasterizer::fill_mask)
-//        -> blit
+//        -> Renderer::mask -> the caller's CoverageSink
 //   2b. otherwise: Renderer::fill of the outline with the full transform (rotation, skew, mirror, huge sizes)
+//        -> the caller's CoverageSink
+// Either way the glyph's coverage goes to one sink: the compositor decides the colour, the operator and the clip.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -97,26 +99,9 @@ GlyphMask GlyphRasterizer::rasterize(const Font& font, std::uint32_t glyph, doub
   return mask;
 }
 
-void TextRenderer::blit(Image& image, const GlyphMask& mask, int x, int y, SolidCompositor<std::uint8_t>& out) {
-  const int x0 = std::max(x + mask.left, 0), x1 = std::min(x + mask.left + mask.width, image.width);
-  const int y0 = std::max(y + mask.top, 0), y1 = std::min(y + mask.top + mask.height, image.height);
-  if (x1 <= x0 || y1 <= y0) return;
-  row_.resize(static_cast<std::size_t>(x1 - x0));
-  for (int py = y0; py < y1; ++py) {
-    const std::uint8_t* src = mask.coverage.data() +
-                              static_cast<std::size_t>(py - (y + mask.top)) * mask.width + (x0 - (x + mask.left));
-    int a = 0, b = x1 - x0;
-    while (a < b && src[a] == 0) ++a;
-    while (b > a && src[b - 1] == 0) --b;
-    if (a == b) continue;
-    for (int i = a; i < b; ++i) row_[i] = static_cast<float>(src[i]) * (1.0f / 255.0f);
-    out.row(py, x0 + a, x0 + b, row_.data() + a);
-  }
-}
-
-void TextRenderer::draw_one(Image& image, const Font& font, std::uint32_t glyph, double size, Point position,
-                            const Affine& transform, const GlyphRenderOptions& options,
-                            SolidCompositor<std::uint8_t>& out, Color color) {
+void TextRenderer::draw_one(const Font& font, std::uint32_t glyph, double size, Point position,
+                            const Affine& transform, const GlyphRenderOptions& options, int width, int height,
+                            CoverageSink& sink) {
   const GlyphOutline& outline = font.glyph_outline(glyph);
   const Path& units = outline.path;
   if (units.empty()) return;  // spaces, bitmap-only glyphs
@@ -127,7 +112,7 @@ void TextRenderer::draw_one(Image& image, const Font& font, std::uint32_t glyph,
   // Far outside the image (4 em of margin covers every sane glyph): nothing to do.
   const double reach = 4.0 * std::max({std::abs(size_x), std::abs(size_y), size * std::hypot(transform.a, transform.b),
                                        size * std::hypot(transform.c, transform.d)});
-  if (p.x + reach < 0 || p.x - reach > image.width || p.y + reach < 0 || p.y - reach > image.height) return;
+  if (p.x + reach < 0 || p.x - reach > width || p.y + reach < 0 || p.y - reach > height) return;
 
   bool cacheable = options.use_cache && aligned && size_x <= kMaxCachedGlyphSize && size_y <= kMaxCachedGlyphSize &&
                    size_x > 0 && size_y > 0;
@@ -147,19 +132,21 @@ void TextRenderer::draw_one(Image& image, const Font& font, std::uint32_t glyph,
     const int iy = static_cast<int>(std::lround(p.y));
     const GlyphCache::Key key{font.id(), glyph, static_cast<std::uint32_t>(phase), std::bit_cast<std::uint64_t>(size_x),
                               std::bit_cast<std::uint64_t>(size_y), options_code(options, phases)};
+    auto put = [&](const GlyphMask& m) {  // the mask takes the same seam as paths: coverage -> the sink
+      renderer_.mask(m.coverage.data(), m.width, m.height, m.width, ix + m.left, iy + m.top, width, height, sink);
+    };
     const GlyphMask* mask = cache_.find(key);
     if (!mask) {
       GlyphMask fresh = glyph_rasterizer_.rasterize(font, glyph, size_x, size_y, static_cast<double>(phase) / phases,
                                                     0.0, options);
       mask = cache_.insert(key, std::move(fresh));
       if (!mask) {  // larger than the cache takes: draw it once, uncached
-        GlyphMask once = glyph_rasterizer_.rasterize(font, glyph, size_x, size_y,
-                                                     static_cast<double>(phase) / phases, 0.0, options);
-        blit(image, once, ix, iy, out);
+        put(glyph_rasterizer_.rasterize(font, glyph, size_x, size_y, static_cast<double>(phase) / phases, 0.0,
+                                        options));
         return;
       }
     }
-    blit(image, *mask, ix, iy, out);
+    put(*mask);
     return;
   }
   // From outlines: the full transform, exact pen position.
@@ -169,22 +156,38 @@ void TextRenderer::draw_one(Image& image, const Font& font, std::uint32_t glyph,
   fo.tolerance = options.tolerance;
   if (options.hinting == Hinting::Light && aligned) {
     const Path hinted = font.outline(glyph, size_y, Hinting::Light);
-    renderer_.fill(image, hinted, Affine::translate(p.x, p.y) * Affine::scale(size_x / size_y, 1.0), color, fo);
+    renderer_.fill(hinted, Affine::translate(p.x, p.y) * Affine::scale(size_x / size_y, 1.0), fo, width, height, sink);
   } else {
     const double s = size / font.units_per_em();
-    renderer_.fill(image, units, transform * Affine::translate(position.x, position.y) * Affine::scale(s), color, fo);
+    renderer_.fill(units, transform * Affine::translate(position.x, position.y) * Affine::scale(s), fo, width, height,
+                   sink);
   }
+}
+
+void TextRenderer::draw(const TextLayout& layout, const Affine& transform, const GlyphRenderOptions& options,
+                        int width, int height, CoverageSink& sink) {
+  if (!transform.is_finite()) throw Error("text transform is not finite");
+  if (layout.glyphs.empty()) return;
+  check_font_size(layout.size);
+  for (const PositionedGlyph& g : layout.glyphs) {
+    draw_one(*layout.fonts.at(g.font), g.glyph, layout.size, g.position, transform, options, width, height, sink);
+  }
+}
+
+void TextRenderer::draw_glyph(const Font& font, std::uint32_t glyph, double size, Point position,
+                              const Affine& transform, const GlyphRenderOptions& options, int width, int height,
+                              CoverageSink& sink) {
+  if (!transform.is_finite()) throw Error("text transform is not finite");
+  check_font_size(size);
+  draw_one(font, glyph, size, position, transform, options, width, height, sink);
 }
 
 void TextRenderer::draw(Image& image, const TextLayout& layout, Color color, const Affine& transform,
                         const GlyphRenderOptions& options) {
   if (!transform.is_finite()) throw Error("text transform is not finite");
   if (!(color.a > 0) || layout.glyphs.empty()) return;
-  check_font_size(layout.size);
   SolidCompositor<std::uint8_t> out(image, color);
-  for (const PositionedGlyph& g : layout.glyphs) {
-    draw_one(image, *layout.fonts.at(g.font), g.glyph, layout.size, g.position, transform, options, out, color);
-  }
+  draw(layout, transform, options, image.width, image.height, out);
 }
 
 void TextRenderer::draw_glyph(Image& image, const Font& font, std::uint32_t glyph, double size, Point position,
@@ -193,7 +196,7 @@ void TextRenderer::draw_glyph(Image& image, const Font& font, std::uint32_t glyp
   check_font_size(size);
   if (!(color.a > 0)) return;
   SolidCompositor<std::uint8_t> out(image, color);
-  draw_one(image, font, glyph, size, position, transform, options, out, color);
+  draw_one(font, glyph, size, position, transform, options, image.width, image.height, out);
 }
 
 void TextRenderer::append_outlines(const TextLayout& layout, Path& out, Hinting hinting) {

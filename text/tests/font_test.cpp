@@ -299,3 +299,60 @@ TEST(Font, MutatedFontsNeverCrash) {
   }
   EXPECT_GT(loaded, 0);
 }
+
+// ---- hostile fonts (issue 12) ----
+
+namespace {
+
+/// The bytes of `font` with table `tag` overwritten by seeded noise (the table directory stays intact).
+std::vector<std::uint8_t> with_garbage_table(std::vector<std::uint8_t> font, const char* tag) {
+  const auto u16 = [&](std::size_t at) { return std::size_t{font[at]} << 8 | font[at + 1]; };
+  const auto u32 = [&](std::size_t at) { return u16(at) << 16 | u16(at + 2); };
+  const std::size_t tables = u16(4);
+  std::uint32_t state = 12345;
+  for (std::size_t i = 0; i < tables; ++i) {
+    const std::size_t record = 12 + 16 * i;
+    if (std::memcmp(&font[record], tag, 4) != 0) continue;
+    const std::size_t offset = u32(record + 8), length = u32(record + 12);
+    for (std::size_t k = offset; k < offset + length && k < font.size(); ++k) {
+      state = state * 1664525u + 1013904223u;
+      font[k] = static_cast<std::uint8_t>(state >> 24);
+    }
+    return font;
+  }
+  ADD_FAILURE() << "no table " << tag;
+  return font;
+}
+
+/// Loads `bytes` and lays out and draws "Hello"; returns the error message, or "" when everything worked.
+std::string load_and_draw(const std::vector<std::uint8_t>& bytes, const std::string& name) {
+  try {
+    const auto font = Font::load_memory(bytes, 0, name);
+    Image image(96, 40);
+    TextStyle style;
+    style.size = 20;
+    const auto layout = layout_text("Hello", FontList(font), style, LayoutOptions{}, {4, 28});
+    TextRenderer().draw(image, layout, Color{});
+    return "";
+  } catch (const Error& e) {
+    return e.what();
+  }
+}
+
+}  // namespace
+
+TEST(HostileFont, GarbageLocaTableIsAnError) {
+  // FreeType gives glyphs it cannot place an empty outline: this drew blank text with exit status 0.
+  const std::string message = load_and_draw(with_garbage_table(read_bytes(repo_font("NotoSans-Regular.ttf")), "loca"),
+                                            "garbage-loca.ttf");
+  EXPECT_NE(message.find("garbage-loca.ttf"), std::string::npos) << message;
+  EXPECT_NE(message.find("loca table is corrupt"), std::string::npos) << message;
+}
+
+TEST(HostileFont, GarbageGlyfTableIsAnErrorNamingTheGlyph) {
+  const std::string message = load_and_draw(with_garbage_table(read_bytes(repo_font("NotoSans-Regular.ttf")), "glyf"),
+                                            "garbage-glyf.ttf");
+  EXPECT_NE(message.find("garbage-glyf.ttf"), std::string::npos) << message;
+  EXPECT_NE(message.find("glyph "), std::string::npos) << message;
+  EXPECT_EQ(message.find("FreeType error"), std::string::npos) << "a bare error number: " << message;
+}

@@ -318,3 +318,60 @@ TEST(GlyphRender, CachedGlyphsAreClippedAtEveryImageBorder) {
     EXPECT_GT(ink_stats(ink_of(a, false), 64, 48).total, 10);
   }
 }
+
+namespace {
+
+// Records what a CoverageSink is given: every pixel's coverage combined as the compositor combines alpha (a over b).
+class AlphaRecorder final : public CoverageSink {
+ public:
+  AlphaRecorder(int w, int h) : w_(w), h_(h), a_(static_cast<std::size_t>(w) * h, 0.0f) {}
+  void span(int y, int x0, int x1, float c) override {
+    for (int x = x0; x < x1; ++x) put(x, y, c);
+  }
+  void row(int y, int x0, int x1, const float* c) override {
+    for (int x = x0; x < x1; ++x) put(x, y, c[x - x0]);
+  }
+  float at(int x, int y) const { return a_[static_cast<std::size_t>(y) * w_ + x]; }
+  bool out_of_bounds = false;
+
+ private:
+  void put(int x, int y, float c) {
+    if (x < 0 || y < 0 || x >= w_ || y >= h_) {
+      out_of_bounds = true;
+      return;
+    }
+    float& a = a_[static_cast<std::size_t>(y) * w_ + x];
+    a = c + a * (1 - c);
+  }
+  int w_, h_;
+  std::vector<float> a_;
+};
+
+}  // namespace
+
+// Text hands its coverage to any sink (the seam every draw call takes): cached masks and outlines alike, clipped to
+// the device; the solid-colour convenience draws exactly that coverage.
+TEST(GlyphRender, CoverageThroughASinkEqualsTheDrawnImage) {
+  TextStyle style;
+  style.size = 24;
+  for (bool cache : {true, false}) {
+    GlyphRenderOptions options;
+    options.use_cache = cache;
+    // Starts left of the image and runs off its right edge: the sink must only see device pixels.
+    const TextLayout layout = layout_text("Wavy glyphs", default_fonts(), style, {}, Point{-6, 30});
+    Image image(100, 40);
+    TextRenderer a, b;
+    a.draw(image, layout, Color::rgb8(0, 0, 0), {}, options);
+    AlphaRecorder rec(100, 40);
+    b.draw(layout, Affine{}, options, 100, 40, rec);
+    EXPECT_FALSE(rec.out_of_bounds);
+    int lit = 0;
+    for (int y = 0; y < 40; ++y) {
+      for (int x = 0; x < 100; ++x) {
+        ASSERT_NEAR(image.pixel(x, y)[3] / 255.0, rec.at(x, y), 1.5 / 255) << cache << " " << x << "," << y;
+        lit += image.pixel(x, y)[3] > 0;
+      }
+    }
+    EXPECT_GT(lit, 200);
+  }
+}

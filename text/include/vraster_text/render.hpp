@@ -2,7 +2,7 @@
 //
 //   glyph outline (FreeType, FT_Outline_Decompose) -> vraster::Path -> flatten -> Rasterizer -> CoverageSink
 //     a) axis-aligned transforms: coverage mask per (font, glyph, size, subpixel phase, options), cached (LRU,
-//        bounded bytes), blitted with the colour through the core's SolidCompositor;
+//        bounded bytes), handed on as coverage rows (Renderer::mask) to the caller's sink;
 //     b) any other transform (rotation, skew, mirroring), huge glyphs, or caching off: the outline is filled
 //        straight onto the image, never from the cache.
 #pragma once
@@ -110,10 +110,20 @@ class TextRenderer {
  public:
   explicit TextRenderer(std::size_t cache_bytes = std::size_t{4} << 20) : cache_(cache_bytes) {}
 
-  /// Draws every glyph of `layout`, mapped by `transform`, in `color`.
+  /// The coverage of every glyph of `layout`, mapped by `transform`, on a width x height device, handed to `sink`
+  /// (a compositor: it decides paint, operator and clip). Each glyph's coverage comes as its own sequence of rows
+  /// (increasing y within a glyph; glyphs one after another). Throws vraster::Error for a non-finite transform or
+  /// a bad size.
+  void draw(const TextLayout& layout, const Affine& transform, const GlyphRenderOptions& options, int width,
+            int height, CoverageSink& sink);
+  /// The coverage of one glyph with its pen at `position` (user space, mapped by `transform`).
+  void draw_glyph(const Font& font, std::uint32_t glyph, double size, Point position, const Affine& transform,
+                  const GlyphRenderOptions& options, int width, int height, CoverageSink& sink);
+
+  /// Convenience: draws every glyph of `layout`, mapped by `transform`, in one solid `color` (source-over).
   void draw(Image& image, const TextLayout& layout, Color color, const Affine& transform = {},
             const GlyphRenderOptions& options = {});
-  /// Draws one glyph with its pen at `position` (user space, mapped by `transform`).
+  /// Convenience: draws one glyph with its pen at `position` (user space, mapped by `transform`) in `color`.
   void draw_glyph(Image& image, const Font& font, std::uint32_t glyph, double size, Point position, Color color,
                   const Affine& transform = {}, const GlyphRenderOptions& options = {});
   /// Appends the outlines of a layout to `out` in user space (for callers that fill or stroke text as a path).
@@ -122,15 +132,12 @@ class TextRenderer {
   GlyphCache& cache() { return cache_; }
 
  private:
-  void draw_one(Image& image, const Font& font, std::uint32_t glyph, double size, Point position,
-                const Affine& transform, const GlyphRenderOptions& options, SolidCompositor<std::uint8_t>& out,
-                Color color);
-  void blit(Image& image, const GlyphMask& mask, int x, int y, SolidCompositor<std::uint8_t>& out);
+  void draw_one(const Font& font, std::uint32_t glyph, double size, Point position, const Affine& transform,
+                const GlyphRenderOptions& options, int width, int height, CoverageSink& sink);
 
   Renderer renderer_;
   GlyphRasterizer glyph_rasterizer_;
   GlyphCache cache_;
-  std::vector<float> row_;
 };
 
 }  // namespace vraster::text

@@ -1,0 +1,59 @@
+// The rasterizer's private state (the Blend2D foo_p.h style): its buffers and the stages that use them.
+// include/vraster/raster.hpp shows only the public API; everything that scan conversion keeps between calls lives
+// here, allocated once per Rasterizer and reused, so steady-state fills allocate nothing.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raster/boundary.hpp"
+#include "raster/unit_winding.hpp"
+#include "vraster/raster.hpp"
+
+namespace vraster::detail {
+
+class RasterizerImpl {
+ public:
+  void fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
+  void fill_mask(const Polylines& lines, FillRule rule, int width, int height, std::uint8_t* mask,
+                 std::ptrdiff_t stride);
+
+  std::vector<Edge> edges_;
+  std::int64_t dense_limit_ = Rasterizer::kDefaultDenseLimit;
+  bool exact_shortcut_ = true;
+
+ private:
+  void build_edges(const Polylines& lines, int width, int height);
+  void build_unclipped_edges(const Polylines& lines);
+  void clip_pieces(int width, int height);
+  void compute_row_range(int height);
+  void sweep_aliased(FillRule rule, int width, CoverageSink& sink);
+  void sweep_analytic(FillRule rule, int width, CoverageSink& sink);
+  bool sweep_dense(FillRule rule, int width, CoverageSink& sink);
+  void bucket_edges(bool by_sample_row);
+  void add_edge(Point top, Point bottom, int winding);
+  void add_clipped_segment(Point p, Point q, int width, int height);
+
+  std::vector<Edge> horizontals_;            // NonExterior: horizontal segments (they matter for connectivity)
+  std::vector<Edge> pieces_;                 // boundary pieces from the boundary sweep
+  int y_min_ = 0, y_max_ = 0;               // rows touched by edges_, [y_min_, y_max_)
+  std::vector<std::uint32_t> bucket_start_;  // edge table: edges starting in row r are order_[bucket_start_[r-y_min_] ..]
+  std::vector<std::uint32_t> order_;
+  std::vector<std::uint32_t> edge_row_;      // first row of each edge (relative to y_min_)
+  std::vector<std::uint32_t> cursor_;        // fill positions while bucketing
+  std::vector<std::uint32_t> active_;        // the active edge list (indices into edges_)
+  struct Crossing {
+    double x;
+    std::uint32_t edge;
+  };
+  std::vector<Crossing> crossings_;          // aliased sweep: active edges with their x at the sample row
+  std::vector<double> accumulation_;         // analytic sweep: one row of signed area deltas, width + 2 cells
+  std::vector<std::uint64_t> touched_;       // analytic sweep: one bit per cell written in the current row
+  std::vector<float> row_coverage_;          // coverage handed to the sink
+  std::vector<double> dense_block_;          // small paths: rows x columns of cells, zero between fills
+  std::vector<float> mask_cells_;            // fill_mask: rows x stride float cells, zero between fills
+  BoundarySweep boundary_;
+  UnitWindingTest unit_winding_;             // exact mode: whether analytic is already exact
+};
+
+}  // namespace vraster::detail
