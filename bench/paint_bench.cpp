@@ -112,7 +112,6 @@ class VrasterScenes {
  public:
   VrasterScenes() : image_(kSize, kSize), layer_(kSize, kSize), tile_(make_tile()) {
     clip_.assign(static_cast<std::size_t>(kSize) * kSize, 0.f);
-    coverage_.assign(kSize, 0.f);
   }
   Image& image() { return image_; }
 
@@ -135,7 +134,7 @@ class VrasterScenes {
     const Polylines& clip_lines = renderer_.flatten_for_fill(clip_path, Affine{}, 0.1, kSize, kSize);
     renderer_.rasterizer().fill(clip_lines, FillRule::NonZero, AntiAlias::Analytic, kSize, kSize, mask);
     comp_.set(ImageView<std::uint8_t>::of(image_), paint, Affine{}, CompositeOp::SourceOver);
-    ClippedSink sink(comp_, clip_.data(), coverage_.data());
+    ClippedSink sink(comp_, clip_.data());
     const Polylines& lines = renderer_.flatten_for_fill(path, Affine{}, 0.1, kSize, kSize);
     renderer_.rasterizer().fill(lines, FillRule::NonZero, AntiAlias::Analytic, kSize, kSize, sink);
   }
@@ -164,24 +163,22 @@ class VrasterScenes {
     float* mask;
   };
   struct ClippedSink final : CoverageSink {
-    ClippedSink(Compositor<std::uint8_t>& c, const float* m, float* buf) : comp(c), mask(m), ones(buf) {}
+    ClippedSink(Compositor<std::uint8_t>& c, const float* m) : comp(c), mask(m) {}
     void span(int y, int x0, int x1, float c) override {
-      std::fill(ones, ones + (x1 - x0), c);
-      comp.row(y, x0, x1, ones, mask + static_cast<std::ptrdiff_t>(y) * kSize + x0);
+      comp.span(y, x0, x1, c, mask + static_cast<std::ptrdiff_t>(y) * kSize + x0);
     }
     void row(int y, int x0, int x1, const float* c) override {
       comp.row(y, x0, x1, c, mask + static_cast<std::ptrdiff_t>(y) * kSize + x0);
     }
     Compositor<std::uint8_t>& comp;
     const float* mask;
-    float* ones;
   };
 
   Image image_, layer_;
   std::shared_ptr<Image> tile_;
   Renderer renderer_;
   Compositor<std::uint8_t> comp_;
-  std::vector<float> clip_, coverage_;
+  std::vector<float> clip_;
 };
 
 // ---- Cairo ----

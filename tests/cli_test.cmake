@@ -1,4 +1,5 @@
 # The vraster command-line tool: exit statuses, messages, "no output on failure", --bench output, demo.
+# (What the written images hold is checked pixel by pixel in cli_pixels_test.cpp.)
 # Run as: cmake -DVRASTER=<vraster binary> -DWORK=<scratch folder> -DSRC=<tests folder> -P cli_test.cmake
 cmake_minimum_required(VERSION 3.25)
 

@@ -477,6 +477,34 @@ TEST(Compositor, DrawsNothingOnlyWhenNothingCanChange) {
   EXPECT_TRUE(comp.draws_nothing());
 }
 
+// span(coverage, clip) and row(nullptr, clip) are row(coverage row, clip) with a constant coverage.
+TEST(Compositor, ClippedSpansEqualClippedRows) {
+  for (CompositeOp op : {CompositeOp::SourceOver, CompositeOp::Multiply, CompositeOp::Copy, CompositeOp::Xor}) {
+    Target<std::uint8_t> a, b, c;
+    a.fill_pattern();
+    b.fill_pattern();
+    c.fill_pattern();
+    Paint paint = Paint::linear({100, 0}, {124, 0});
+    paint.add_stop(0, {1, 0, 0, 0.8f});
+    paint.add_stop(1, {0, 0, 1, 1});
+    std::vector<float> clip(24), cov(24, 0.7f), ones(24, 1.f);
+    for (int i = 0; i < 24; ++i) clip[static_cast<std::size_t>(i)] = static_cast<float>((i * 5) % 9) / 8.f;
+    Compositor<std::uint8_t> comp;
+    comp.set(a.view, paint, Affine{}, op, 0.9f);
+    comp.span(54, 100, 124, 0.7f, clip.data());
+    comp.set(b.view, paint, Affine{}, op, 0.9f);
+    comp.row(54, 100, 124, cov.data(), clip.data());
+    EXPECT_EQ(a.pixels, b.pixels) << to_string(op);
+    Target<std::uint8_t> d;
+    d.fill_pattern();
+    comp.set(c.view, paint, Affine{}, op, 0.9f);
+    comp.row(54, 100, 124, nullptr, clip.data());
+    comp.set(d.view, paint, Affine{}, op, 0.9f);
+    comp.row(54, 100, 124, ones.data(), clip.data());
+    EXPECT_EQ(c.pixels, d.pixels) << to_string(op);
+  }
+}
+
 TEST(Compositor, SpansOutsideTheViewAreIgnored) {
   Target<std::uint8_t> t;
   Compositor<std::uint8_t> comp;

@@ -73,8 +73,10 @@ class Compositor final : public CoverageSink {
   void span(int y, int x0, int x1, float coverage) override;
   void row(int y, int x0, int x1, const float* coverage) override;
   /// As row(), then lerps by `clip` (may be null). For unbounded operators the caller covers the whole clip region
-  /// row by row, with coverage 0 where the shape is absent.
+  /// row by row, with coverage 0 where the shape is absent. `coverage` may be null here: coverage 1 everywhere.
   void row(int y, int x0, int x1, const float* coverage, const float* clip);
+  /// As span(), then lerps by `clip` (may be null): a run of constant coverage through a clip mask's row.
+  void span(int y, int x0, int x1, float coverage, const float* clip);
 
   /// True when nothing the current draw call could do changes a pixel (invisible paint or zero alpha with a
   /// bounded operator): callers skip rasterization altogether.

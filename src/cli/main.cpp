@@ -51,6 +51,7 @@ struct RenderArgs {
   std::string input;
   std::string output;
   svg::RenderSettings settings;
+  AntiAliasMethod aa;  ///< --aa: settings.aa is its coverage mode; the post-filter runs on each finished frame
   int depth = 8;
   Color background = Color::transparent();
   int bench_frames = 0;
@@ -104,7 +105,8 @@ RenderArgs parse_render_args(int argc, char** argv) {
       a.quiet = true;
     } else if (arg == "--aa") {
       const auto v = r.value(arg);
-      if (!parse_anti_alias(v, a.settings.aa)) throw UsageError{"--aa: unknown mode " + quoted(v)};
+      if (!parse_anti_alias_method(v, a.aa)) throw UsageError{"--aa: unknown mode " + quoted(v)};
+      a.settings.aa = a.aa.coverage;
     } else if (arg == "--rule") {
       const auto v = r.value(arg);
       FillRule rule;
@@ -158,7 +160,7 @@ void render_document(const svg::Document& doc, const RenderArgs& a) {
   auto frame = [&] {
     image.clear(a.background);
     svg::render(doc, image, a.settings, renderer);
-    if (a.settings.aa == AntiAlias::Fxaa) fxaa(image);  // fxaa: aliased render + post-filter
+    post_filter(a.aa, image);  // fxaa: the aliased render, then the filter
   };
   if (a.bench_frames > 0) {
     frame();  // warm-up: buffers reach their steady-state size

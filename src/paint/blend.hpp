@@ -275,9 +275,10 @@ inline std::uint32_t over8(std::uint32_t s, std::uint32_t d) { return s + scale8
 
 /// round(255 * clamp(v, 0, 1)), NaN -> 0, written so that it vectorises.
 inline std::uint32_t quantize8(float v) {
-  v = v > 0.f ? v : 0.f;
-  v = v < 1.f ? v : 1.f;
-  return static_cast<std::uint32_t>(v * 255.f + 0.5f);
+  // Branch-free clamp (NaN fails v > 0 and becomes 0); the conversion of v * 255 + 0.5 in [0.5, 255.5] truncates.
+  const float lo = __builtin_isgreater(v, 0.f) ? v : 0.f;
+  const float hi = lo < 1.f ? lo : 1.f;
+  return static_cast<std::uint32_t>(static_cast<std::int32_t>(hi * 255.f + 0.5f));
 }
 
 // The source-over loops (composite.cpp: compiled for AVX2 and for any x86-64, picked at load time).

@@ -40,20 +40,30 @@ VRASTER_PAINT_CLONES void over8_row(std::uint32_t* px, const std::uint32_t* src,
   }
 }
 
-/// Colours (src_step 0: one colour) scaled by per-pixel coverage x scale, optionally lerped by a clip.
+/// Colours (src_step 0: one colour) scaled by per-pixel coverage x scale, optionally lerped by a clip. Each case
+/// is its own loop so that the compiler vectorises it (a run-time source step would make every load a gather).
 VRASTER_PAINT_CLONES void over8_masked(std::uint32_t* px, const std::uint32_t* src, int src_step,
-                                              const float* coverage, float scale, const float* clip, int n) {
-  if (clip == nullptr) {
-    for (int i = 0; i < n; ++i) px[i] = over8(scale8(src[i * src_step], quantize8(coverage[i] * scale)), px[i]);
-  } else if (coverage == nullptr) {
-    const std::uint32_t k = quantize8(scale);
-    for (int i = 0; i < n; ++i) {
-      px[i] = lerp8(px[i], over8(scale8(src[i * src_step], k), px[i]), quantize8(clip[i]));
+                                       const float* coverage, float scale, const float* clip, int n) {
+  const std::uint32_t k = quantize8(scale);
+  if (src_step == 0) {
+    const std::uint32_t c = src[0];
+    if (clip == nullptr) {
+      for (int i = 0; i < n; ++i) px[i] = over8(scale8(c, quantize8(coverage[i] * scale)), px[i]);
+    } else if (coverage == nullptr) {
+      const std::uint32_t s = scale8(c, k);
+      for (int i = 0; i < n; ++i) px[i] = lerp8(px[i], over8(s, px[i]), quantize8(clip[i]));
+    } else {
+      for (int i = 0; i < n; ++i) {
+        px[i] = lerp8(px[i], over8(scale8(c, quantize8(coverage[i] * scale)), px[i]), quantize8(clip[i]));
+      }
     }
+  } else if (clip == nullptr) {
+    for (int i = 0; i < n; ++i) px[i] = over8(scale8(src[i], quantize8(coverage[i] * scale)), px[i]);
+  } else if (coverage == nullptr) {
+    for (int i = 0; i < n; ++i) px[i] = lerp8(px[i], over8(scale8(src[i], k), px[i]), quantize8(clip[i]));
   } else {
     for (int i = 0; i < n; ++i) {
-      const std::uint32_t r = over8(scale8(src[i * src_step], quantize8(coverage[i] * scale)), px[i]);
-      px[i] = lerp8(px[i], r, quantize8(clip[i]));
+      px[i] = lerp8(px[i], over8(scale8(src[i], quantize8(coverage[i] * scale)), px[i]), quantize8(clip[i]));
     }
   }
 }
@@ -188,6 +198,20 @@ void Compositor<T>::span(int y, int x0, int x1, float coverage) {
   }
   const T* src = s.shade(y, x0, n);
   s.run(dst, src, s.shader.is_constant() ? 0 : 4, nullptr, coverage * s.alpha, nullptr, n);
+}
+
+template <class T>
+void Compositor<T>::span(int y, int x0, int x1, float coverage, const float* clip) {
+  if (clip == nullptr) {
+    span(y, x0, x1, coverage);
+    return;
+  }
+  State& s = *state_;
+  int skip = 0;
+  if (s.nothing || !s.clip_to_view(y, x0, x1, skip)) return;
+  const int n = x1 - x0;
+  const T* src = s.shade(y, x0, n);
+  s.run(s.view.pixel(x0, y), src, s.shader.is_constant() ? 0 : 4, nullptr, coverage * s.alpha, clip + skip, n);
 }
 
 template <class T>

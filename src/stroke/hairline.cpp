@@ -212,7 +212,7 @@ void stroke_path(BasicImage<T>& image, const Path& path, const Affine& transform
     // Thin: dashes in user space, then hairlines in device space with alpha scaled by the width.
     const Path centre_lines = thin_centre_lines(path, style, user_tol);
     HairlineMode mode = options.thin_mode;
-    if (options.aa == AntiAlias::None || options.aa == AntiAlias::Fxaa) {  // fxaa: aliased, filtered afterwards
+    if (options.aa == AntiAlias::None) {
       if (mode != HairlineMode::Dda) mode = HairlineMode::Bresenham;
     } else if (mode == HairlineMode::Bresenham || mode == HairlineMode::Dda) {
       mode = HairlineMode::Analytic;
