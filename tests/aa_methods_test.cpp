@@ -22,7 +22,7 @@ using test::rasterize;
 
 constexpr AntiAlias kAll[] = {AntiAlias::None,   AntiAlias::Analytic, AntiAlias::Exact,  AntiAlias::Ssaa2,
                               AntiAlias::Ssaa4,  AntiAlias::Ssaa8,    AntiAlias::Ssaa16, AntiAlias::Msaa4,
-                              AntiAlias::Msaa8,  AntiAlias::Msaa16,   AntiAlias::Fxaa};
+                              AntiAlias::Msaa8,  AntiAlias::Msaa16};
 constexpr FillRule kWindingRules[] = {FillRule::EvenOdd, FillRule::NonZero, FillRule::Positive, FillRule::Negative,
                                       FillRule::AbsGeq2};
 
@@ -78,8 +78,18 @@ TEST(AaNames, EveryModeHasAName) {
   EXPECT_EQ(out, AntiAlias::Ssaa4);
   EXPECT_TRUE(parse_anti_alias("msaa-16", out));
   EXPECT_EQ(out, AntiAlias::Msaa16);
-  EXPECT_TRUE(parse_anti_alias("fxaa", out));
-  EXPECT_EQ(out, AntiAlias::Fxaa);
+  // FXAA is a post-filter, not a coverage mode: only the method names know it.
+  EXPECT_FALSE(parse_anti_alias("fxaa", out));
+  AntiAliasMethod method;
+  EXPECT_TRUE(parse_anti_alias_method("fxaa", method));
+  EXPECT_EQ(method, (AntiAliasMethod{AntiAlias::None, true}));
+  EXPECT_EQ(to_string(method), "fxaa");
+  for (const AntiAlias aa : kAll) {
+    ASSERT_TRUE(parse_anti_alias_method(to_string(aa), method)) << to_string(aa);
+    EXPECT_EQ(method, (AntiAliasMethod{aa, false}));
+    EXPECT_EQ(to_string(method), to_string(aa));
+  }
+  EXPECT_FALSE(parse_anti_alias_method("fxaa-2", method));
   EXPECT_FALSE(parse_anti_alias("ssaa-3", out));
   EXPECT_FALSE(parse_anti_alias("msaa-2", out));
 }
@@ -156,7 +166,7 @@ TEST(AaSamples, PointSampledModesMatchBruteForceWinding) {
 }
 
 // All methods agree exactly on unions of axis-aligned rectangles with integer corners (every pixel is fully in
-// or out, so every sample and every area agrees). fxaa here is the rasterizer's part (aliased).
+// or out, so every sample and every area agrees).
 TEST(AaAgreement, IntegerRectanglesAreExactInEveryMode) {
   Path path;
   path.add_rect(Rect{2, 3, 17, 9});
@@ -269,15 +279,39 @@ TEST(Fxaa, PlaneVersionStaysInRangeAndSmoothsAStaircase) {
   EXPECT_GT(fractional, H / 2);
 }
 
-// The rasterizer renders fxaa as aliased coverage (the filter is the caller's post-pass).
-TEST(Fxaa, RasterizerPartIsAliased) {
+// The fxaa method: aliased coverage, then fxaa() on the finished image or plane; other methods filter nothing.
+TEST(Fxaa, MethodIsAliasedCoverageThenThePostFilter) {
   std::mt19937 rng(3);
   const Path path = random_polygon(rng, 7, 0.5, 29.5);
-  const CoverageGrid a = rasterize(path, FillRule::NonZero, AntiAlias::None, 30, 30);
-  const CoverageGrid b = rasterize(path, FillRule::NonZero, AntiAlias::Fxaa, 30, 30);
+  AntiAliasMethod method;
+  ASSERT_TRUE(parse_anti_alias_method("fxaa", method));
+  const CoverageGrid aliased = rasterize(path, FillRule::NonZero, AntiAlias::None, 30, 30);
+  const CoverageGrid drawn = rasterize(path, FillRule::NonZero, method.coverage, 30, 30);
+  std::vector<float> plane(30 * 30), filtered;
   for (int y = 0; y < 30; ++y) {
-    for (int x = 0; x < 30; ++x) ASSERT_EQ(a.at(x, y), b.at(x, y));
+    for (int x = 0; x < 30; ++x) {
+      ASSERT_EQ(drawn.at(x, y), aliased.at(x, y));
+      plane[static_cast<std::size_t>(y) * 30 + x] = aliased.at(x, y);
+    }
   }
+  filtered = plane;
+  post_filter(method, std::span<float>(filtered), 30, 30);
+  std::vector<float> reference = plane;
+  fxaa(std::span<float>(reference), 30, 30);
+  EXPECT_EQ(filtered, reference);
+  EXPECT_NE(filtered, plane);  // an aliased polygon has edges to smooth
+  std::vector<float> untouched = plane;
+  post_filter(AntiAliasMethod{AntiAlias::Analytic, false}, std::span<float>(untouched), 30, 30);
+  EXPECT_EQ(untouched, plane);
+  // Images too.
+  Image image(30, 30), reference_image(30, 30);
+  image.clear(Color{1, 1, 1, 1});
+  Renderer renderer;
+  renderer.fill(image, path, Affine{}, Color{0, 0, 0, 1}, FillOptions{FillRule::NonZero, method.coverage});
+  reference_image = image;
+  post_filter(method, image);
+  fxaa(reference_image);
+  EXPECT_EQ(image.data, reference_image.data);
 }
 
 }  // namespace

@@ -342,7 +342,7 @@ TEST(CliDemo, KnownColoursAtKnownPoints) {
   // scene gives them, worked out by hand from its SVG.
   const Image image = run_to_png("demo", work_dir() + "/demo.png");
   ASSERT_EQ(image.width, 640);
-  ASSERT_EQ(image.height, 400);
+  ASSERT_EQ(image.height, 620);  // the SVG scene (400 px) and the canvas panel under it
   struct Probe {
     const char* what;
     int x, y;
@@ -363,6 +363,14 @@ TEST(CliDemo, KnownColoursAtKnownPoints) {
       {"translucent red circle", 70, 200, 0.5 * 231 + 0.5 * 244, 0.5 * 76 + 0.5 * 241, 0.5 * 60 + 0.5 * 234},
       {"outer concentric ring #117a65", 300, 235, 17, 122, 101},
       {"gap between rings", 300, 245, 244, 241, 234},
+      // The canvas panel (draw_canvas_panel): blue #2e86c1 squares under orange #f39c12 discs, one operator each.
+      {"multiply: blue x orange", 128, 482, 46 * 243 / 255.0, 134 * 156 / 255.0, 193 * 18 / 255.0},
+      {"difference: |blue - orange|", 272, 482, 197, 22, 175},
+      {"destination-out: the square outside the disc", 400, 450, 46, 134, 193},
+      // ... inside the disc the layer is empty, so the banner shows: its gradient from #2e4053 (0.5) to #512e5f (1)
+      // at t = 416.5 / 640.
+      {"destination-out: the banner through the hole", 416, 482, 46 + 35 * (416.5 / 640 - 0.5) / 0.5,
+       64 - 18 * (416.5 / 640 - 0.5) / 0.5, 83 + 12 * (416.5 / 640 - 0.5) / 0.5},
   };
   for (const Probe& p : probes) {
     const std::uint8_t* px = image.pixel(p.x, p.y);

@@ -1,4 +1,5 @@
 # The vraster command-line tool: exit statuses, messages, "no output on failure", --bench output, demo.
+# (What the written images hold is checked pixel by pixel in cli_pixels_test.cpp.)
 # Run as: cmake -DVRASTER=<vraster binary> -DWORK=<scratch folder> -DSRC=<tests folder> -P cli_test.cmake
 cmake_minimum_required(VERSION 3.25)
 
@@ -73,14 +74,19 @@ macro(expect_png case path width height depth)
   endif()
 endmacro()
 
-# --- malformed path data: status 2, FILE:LINE:COLUMN: and the problem, no output file ---
+# --- malformed path data: SVG draws the path up to the error; a warning with FILE:LINE:COLUMN, status 0 ---
 # tests/data/bad_path.svg line 3 is `  <path d="M1 1 L4 2 L5 x5 Z" fill="red"/>`: the 'x' is in column 25.
 run_vraster(render "${DATA}/bad_path.svg" -o bad.png)
-expect_status("malformed path data" 2)
+expect_status("malformed path data" 0)
 expect_stderr("malformed path data" "bad_path\\.svg:3:25: ")
 expect_stderr("malformed path data" "path data")
 expect_stderr("malformed path data" "'x'")
-expect_no_file("malformed path data" "${WORK}/bad.png")
+expect_png("malformed path data" "${WORK}/bad.png" 8 6 8)
+run_vraster(render "${DATA}/bad_path.svg" -o quiet.png --quiet)
+expect_status("--quiet" 0)
+if(NOT ERR STREQUAL "")
+  fail("--quiet still printed warnings")
+endif()
 
 # The same error in a file written here: a multi-line d attribute, the error on its second line (line 4).
 file(WRITE "${WORK}/multiline.svg"
@@ -90,9 +96,15 @@ file(WRITE "${WORK}/multiline.svg"
   "         L5 1..5 Z\"/>\n"
   "</svg>\n")
 run_vraster(render multiline.svg -o multi.png)
-expect_status("malformed multi-line path data" 2)
+expect_status("malformed multi-line path data" 0)
 expect_stderr("malformed multi-line path data" "multiline\\.svg:4:[0-9]+: ")
-expect_no_file("malformed multi-line path data" "${WORK}/multi.png")
+
+# A document that cannot be used at all is still an error: no size.
+file(WRITE "${WORK}/nosize.svg" "<svg xmlns=\"http://www.w3.org/2000/svg\">\n<path d=\"M0 0h1v1z\"/></svg>\n")
+run_vraster(render nosize.svg -o nosize.png)
+expect_status("no size" 2)
+expect_stderr("no size" "nosize\\.svg:1:1: .*needs width and height")
+expect_no_file("no size" "${WORK}/nosize.png")
 
 # Malformed XML.
 file(WRITE "${WORK}/broken.svg" "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\">\n<path d=\"M0 0\"\n")
@@ -224,7 +236,7 @@ expect_no_file("mesh unknown shading" "${WORK}/mesh_out.png")
 # --- demo ---
 run_vraster(demo -o demo-out.png)
 expect_status("demo" 0)
-expect_png("demo" "${WORK}/demo-out.png" 640 400 8)
+expect_png("demo" "${WORK}/demo-out.png" 640 620 8)
 
 # --- hostile input (issue 12): uncaught exceptions, output files, input size caps ---
 execute_process(COMMAND ${CMAKE_COMMAND} -E env VRASTER_BENCH_SCENES=/nonexistent "${VRASTER}" accuracy -o acc_missing

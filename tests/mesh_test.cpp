@@ -88,7 +88,7 @@ TEST(MeshRaster, FanAndStripCoverEveryCentreExactlyOnce) {
 }
 
 // The same property through the renderer: alpha 0.5 blended once gives one level everywhere, never two.
-TEST(MeshRaster, HalfAlphaFanIsBlendedOnce) {
+TEST(MeshRaster, HalfAlphaFanAndStripAreBlendedOnce) {
   Image img(32, 32);
   Mesh mesh;
   mesh.vertices.push_back(vertex(16, 16, Color{0, 0, 1, 0.5f}));
@@ -116,6 +116,28 @@ TEST(MeshRaster, HalfAlphaFanIsBlendedOnce) {
     }
   }
   EXPECT_EQ(half, r.stats().fragments);
+
+  // A strip of 24 triangles with vertices on pixel centres and corners: inside it every pixel is blended once.
+  Image strip(40, 20);
+  Mesh s;
+  for (int i = 0; i <= 12; ++i) {
+    s.vertices.push_back(vertex(2.0 + 3 * i, 2.0 + (i % 2) * 0.5, Color{1, 0, 0, 0.5f}));
+    s.vertices.push_back(vertex(2.0 + 3 * i + (i % 3) * 0.5, 17.5, Color{1, 0, 0, 0.5f}));
+  }
+  for (std::uint32_t i = 0; i < 12; ++i) {
+    s.triangles.push_back({2 * i, 2 * i + 1, 2 * i + 2});
+    s.triangles.push_back({2 * i + 2, 2 * i + 1, 2 * i + 3});
+  }
+  r.draw(strip, s, o);
+  for (int y = 0; y < 20; ++y) {
+    for (int x = 0; x < 40; ++x) {
+      const int a = strip.pixel(x, y)[3];
+      ASSERT_TRUE(a == 0 || a == 128) << "alpha " << a << " at " << x << "," << y;
+      if (x >= 3 && x < 37 && y >= 3 && y < 17) {
+        EXPECT_EQ(a, 128) << "gap at " << x << "," << y;
+      }
+    }
+  }
 }
 
 // Incremental spans and the bounding-box scan give the same pixels; both agree with vraster's aliased path

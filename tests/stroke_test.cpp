@@ -673,6 +673,74 @@ TEST(Hairlines, CoverageSinkMatchesDrawnPixels) {
   }
 }
 
+TEST(StrokeRender, RendererStrokeHandsTheDrawnCoverageToAnySink) {
+  // stroke_path is Renderer::stroke into a solid compositor: the sink sees exactly the coverage that gets drawn,
+  // for wide strokes (outline filled non-zero) and thin ones (hairlines scaled by the width), at both depths.
+  const Path p = polyline({{3, 4}, {20, 9}, {6, 18}});
+  Renderer renderer;
+  for (double width : {3.0, 0.4}) {
+    for (AntiAlias aa : {AntiAlias::Analytic, AntiAlias::None}) {
+      const StrokeStyle s = style_of(width, LineCap::Round, LineJoin::Round);
+      StrokeRenderOptions o;
+      o.aa = aa;
+      CoverageGrid g(24, 24);
+      renderer.stroke(p, Affine{}, s, o, 24, 24, g);
+      EXPECT_TRUE(g.violations().empty());
+      Image a(24, 24);
+      Image16 b(24, 24);
+      a.clear(Color::transparent());
+      b.clear(Color::transparent());
+      o.renderer = &renderer;
+      stroke_path(a, p, Affine{}, s, Color{0, 0, 0, 1}, o);
+      stroke_path(b, p, Affine{}, s, Color{0, 0, 0, 1}, o);
+      double total = 0;
+      for (int y = 0; y < 24; ++y) {
+        for (int x = 0; x < 24; ++x) {
+          ASSERT_NEAR(a.pixel(x, y)[3] / 255.0, g.at(x, y), 0.6 / 255) << width << " " << x << "," << y;
+          ASSERT_NEAR(b.pixel(x, y)[3] / 65535.0, g.at(x, y), 1.0 / 65535) << width << " " << x << "," << y;
+          total += g.at(x, y);
+        }
+      }
+      // About the stroke's area: length (17.7 + 16.6) times the width (the hairline's share for thin strokes).
+      EXPECT_NEAR(total, 34.3 * width, 34.3 * width * 0.25) << width << " " << to_string(aa);
+    }
+  }
+}
+
+TEST(StrokeRender, ThinStrokeModeIsOneDecision) {
+  EXPECT_EQ(thin_stroke_mode(AntiAlias::None, HairlineMode::Analytic), HairlineMode::Bresenham);
+  EXPECT_EQ(thin_stroke_mode(AntiAlias::None, HairlineMode::Wu), HairlineMode::Bresenham);
+  EXPECT_EQ(thin_stroke_mode(AntiAlias::None, HairlineMode::Dda), HairlineMode::Dda);
+  EXPECT_EQ(thin_stroke_mode(AntiAlias::Analytic, HairlineMode::Bresenham), HairlineMode::Analytic);
+  EXPECT_EQ(thin_stroke_mode(AntiAlias::Exact, HairlineMode::Dda), HairlineMode::Analytic);
+  EXPECT_EQ(thin_stroke_mode(AntiAlias::Ssaa4, HairlineMode::Wu), HairlineMode::Wu);
+  // The same decision at every depth: an aliased thin stroke on a 16-bit image lights Bresenham's pixels, each at
+  // the width's share of full coverage, like the 8-bit image.
+  const Path p = polyline({{2.5, 2.5}, {17.5, 9.5}});
+  const StrokeStyle s = style_of(0.5, LineCap::Butt, LineJoin::Miter);
+  StrokeRenderOptions o;
+  o.aa = AntiAlias::None;
+  Image a(20, 12);
+  Image16 b(20, 12);
+  a.clear(Color::transparent());
+  b.clear(Color::transparent());
+  stroke_path(a, p, Affine{}, s, Color{0, 0, 0, 1}, o);
+  stroke_path(b, p, Affine{}, s, Color{0, 0, 0, 1}, o);
+  int lit = 0;
+  for (int y = 0; y < 12; ++y) {
+    for (int x = 0; x < 20; ++x) {
+      const bool on = a.pixel(x, y)[3] != 0;
+      ASSERT_EQ(on, b.pixel(x, y)[3] != 0) << x << "," << y;
+      if (on) {
+        ++lit;
+        ASSERT_EQ(a.pixel(x, y)[3], 128);
+        ASSERT_EQ(b.pixel(x, y)[3], 32768);
+      }
+    }
+  }
+  EXPECT_EQ(lit, 16);  // Bresenham from pixel (2, 2) to (17, 9), both ends drawn: 16 columns
+}
+
 TEST(StrokeNames, ParseAndPrint) {
   LineCap c{};
   LineJoin j{};

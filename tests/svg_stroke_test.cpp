@@ -46,15 +46,6 @@ const DrawItem& only_stroke(const Document& doc) {
   return kNone;
 }
 
-/// The message of the ParseError thrown by parsing `text` ("" when none is thrown).
-std::string parse_error(const std::string& text) {
-  try {
-    parse_svg(text);
-  } catch (const ParseError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 /// Pixels with non-zero alpha, sorted (y, then x).
 template <class T>
@@ -192,29 +183,47 @@ TEST(SvgStroke, OutOfRangeValuesAreIgnoredWithWarnings) {
   EXPECT_TRUE(doc.items[2].stroke.dashes.empty());  // a negative dash: solid
   EXPECT_EQ(doc.items[3].stroke.join, LineJoin::Miter);
   ASSERT_EQ(doc.warnings.size(), 5u);
-  EXPECT_EQ(doc.warnings[0].rfind("3:46: negative stroke-width", 0), 0u) << doc.warnings[0];
-  EXPECT_EQ(doc.warnings[1].rfind("4:51: stroke-miterlimit '0.5' is below 1", 0), 0u) << doc.warnings[1];
+  EXPECT_EQ(doc.warnings[0].rfind("3:46: invalid stroke-width '-1', ignored", 0), 0u) << doc.warnings[0];
+  EXPECT_EQ(doc.warnings[1].rfind("4:51: invalid stroke-miterlimit '0.5', ignored", 0), 0u) << doc.warnings[1];
   EXPECT_EQ(doc.warnings[2].rfind("5:50: negative value in stroke-dasharray", 0), 0u) << doc.warnings[2];
   EXPECT_NE(doc.warnings[3].find("miter-clip"), std::string::npos) << doc.warnings[3];
   EXPECT_NE(doc.warnings[4].find("arcs"), std::string::npos) << doc.warnings[4];
 }
 
-TEST(SvgStroke, MalformedValuesAreErrors) {
-  auto error_for = [](const std::string& attrs) {
-    return parse_error("<svg width=\"10\" height=\"10\">\n<path d=\"M0 0L5 5\" " + attrs + "/></svg>");
+TEST(SvgStroke, MalformedValuesAreIgnoredWithWarnings) {
+  // SVG: an invalid value is treated as if it were not given; the warning names it with its line:column.
+  auto check = [](const std::string& attrs, const std::string& warning) {
+    const vraster::svg::Document doc = vraster::svg::parse_svg(
+        "<svg width=\"10\" height=\"10\">\n<path d=\"M0 0L5 5\" stroke=\"red\" " + attrs + "/></svg>");
+    ASSERT_EQ(doc.warnings.size(), 1u) << attrs;
+    EXPECT_EQ(doc.warnings[0].rfind(warning, 0), 0u) << doc.warnings[0];
+    ASSERT_EQ(doc.items.size(), 2u) << attrs;  // the default fill (black) and the red stroke
+    const vraster::StrokeStyle& s = doc.items[1].stroke;
+    EXPECT_EQ(s.width, 1);  // every property at its initial value
+    EXPECT_EQ(s.cap, vraster::LineCap::Butt);
+    EXPECT_EQ(s.join, LineJoin::Miter);
+    EXPECT_EQ(s.miter_limit, 4);
+    EXPECT_TRUE(s.dashes.empty());
+    EXPECT_EQ(s.dash_offset, 0);
+    EXPECT_FLOAT_EQ(doc.items[1].color.a, 1.0f);
   };
-  EXPECT_EQ(error_for("stroke=\"nocolour\""), "<memory>:2:28: invalid colour for stroke: 'nocolour'");
-  EXPECT_EQ(error_for("stroke-width=\"wide\""), "<memory>:2:34: invalid length for stroke-width: 'wide'");
-  EXPECT_NE(error_for("stroke-linecap=\"flat\"").find("invalid stroke-linecap 'flat'"), std::string::npos);
-  EXPECT_NE(error_for("stroke-linejoin=\"sharp\"").find("invalid stroke-linejoin 'sharp'"), std::string::npos);
-  EXPECT_NE(error_for("stroke-miterlimit=\"4px\"").find("invalid stroke-miterlimit"), std::string::npos);
-  EXPECT_NE(error_for("stroke-opacity=\"half\"").find("invalid stroke-opacity"), std::string::npos);
-  EXPECT_NE(error_for("stroke-dashoffset=\"x\"").find("invalid length for stroke-dashoffset"), std::string::npos);
-  EXPECT_EQ(error_for("stroke-dasharray=\"1 2 x\""),
-            "<memory>:2:42: invalid stroke-dasharray '1 2 x' (expected none or a list of lengths)");
-  EXPECT_NE(error_for("stroke-dasharray=\"1,,2\"").find("invalid stroke-dasharray"), std::string::npos);
-  EXPECT_NE(error_for("stroke-dasharray=\"1, 2,\"").find("expected a length after ','"), std::string::npos);
-  EXPECT_NE(error_for("stroke-dasharray=\"\"").find("invalid stroke-dasharray"), std::string::npos);
+  check("stroke-width=\"wide\"", "2:47: invalid stroke-width 'wide', ignored");
+  check("stroke-linecap=\"miter\"", "2:49: invalid stroke-linecap 'miter', ignored");
+  check("stroke-linejoin=\"sharp\"", "2:50: invalid stroke-linejoin 'sharp', ignored");
+  check("stroke-miterlimit=\"4px\"", "2:52: invalid stroke-miterlimit '4px', ignored");
+  check("stroke-opacity=\"half\"", "2:49: invalid stroke-opacity 'half', ignored");
+  check("stroke-dashoffset=\"x\"", "2:52: invalid stroke-dashoffset 'x', ignored");
+  check("stroke-dasharray=\"1 2 x\"", "2:51: invalid stroke-dasharray '1 2 x', ignored");
+  check("stroke-dasharray=\"1,,2\"", "2:51: invalid stroke-dasharray '1,,2', ignored");
+  check("stroke-dasharray=\"1, 2,\"", "2:51: invalid stroke-dasharray '1, 2,', ignored");
+  check("stroke-dasharray=\"\"", "2:51: invalid stroke-dasharray '', ignored");
+  // An invalid stroke colour: not given, so the stroke is none (the initial value) and only the fill is drawn.
+  const vraster::svg::Document doc =
+      vraster::svg::parse_svg("<svg width=\"10\" height=\"10\">\n<path d=\"M0 0L5 5\" stroke=\"nocolour\"/></svg>");
+  ASSERT_EQ(doc.warnings.size(), 1u);
+  EXPECT_EQ(doc.warnings[0], "2:28: invalid stroke 'nocolour', ignored");
+  ASSERT_EQ(doc.items.size(), 1u);
+  EXPECT_TRUE(doc.items[0].is_fill());
 }
 
 TEST(SvgStroke, DashArrayForms) {

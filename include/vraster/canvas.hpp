@@ -94,7 +94,7 @@ class Canvas {
   void set_global_alpha(double alpha);  ///< outside [0, 1] or non-finite: ignored
   void set_composite(CompositeOp op);
   void set_fill_rule(FillRule rule);  ///< the rule of fill() and clip() without an explicit rule
-  /// Any mode but AntiAlias::Fxaa (use apply_fxaa(), a post-filter, instead: set_anti_alias(Fxaa) is ignored).
+  /// The rasterizer's coverage mode. (FXAA is not one: it is a post-filter, apply_fxaa().)
   void set_anti_alias(AntiAlias aa);
   void set_tolerance(double device_pixels);  ///< flattening tolerance; <= 0 or non-finite: ignored
   void set_image_smoothing(bool on);

@@ -45,6 +45,10 @@ bool is_bounded(CompositeOp op);
 template <class T>
 void blend_row(CompositeOp op, T* dst, const T* src, const float* coverage, const float* clip, int count);
 
+/// As blend_row with every coverage value equal to `alpha` (a layer's opacity): no coverage row needed.
+template <class T>
+void blend_row_alpha(CompositeOp op, T* dst, const T* src, float alpha, const float* clip, int count);
+
 /// A CoverageSink that paints with a Paint and an operator onto an ImageView. Coverage scales the source (the
 /// HTML canvas model: the shape is an image whose alpha is its coverage); for bounded operators this equals
 /// lerping by coverage. Decides once per span what it needs: an opaque solid span with source-over stores
@@ -69,8 +73,10 @@ class Compositor final : public CoverageSink {
   void span(int y, int x0, int x1, float coverage) override;
   void row(int y, int x0, int x1, const float* coverage) override;
   /// As row(), then lerps by `clip` (may be null). For unbounded operators the caller covers the whole clip region
-  /// row by row, with coverage 0 where the shape is absent.
+  /// row by row, with coverage 0 where the shape is absent. `coverage` may be null here: coverage 1 everywhere.
   void row(int y, int x0, int x1, const float* coverage, const float* clip);
+  /// As span(), then lerps by `clip` (may be null): a run of constant coverage through a clip mask's row.
+  void span(int y, int x0, int x1, float coverage, const float* clip);
 
   /// True when nothing the current draw call could do changes a pixel (invisible paint or zero alpha with a
   /// bounded operator): callers skip rasterization altogether.

@@ -2,8 +2,10 @@
 #pragma once
 
 #include <span>
+#include <string_view>
 
 #include "vraster/image.hpp"
+#include "vraster/raster.hpp"
 
 namespace vraster {
 
@@ -28,5 +30,24 @@ void fxaa(Image16& image, const FxaaOptions& options = {});
 /// The same filter on one plane of values in [0, 1] (e.g. a coverage buffer), luma = value. plane.size() must be
 /// width * height.
 void fxaa(std::span<float> plane, int width, int height, const FxaaOptions& options = {});
+
+/// An antialiasing method as tools name it: the rasterizer's coverage mode plus an optional post-filter. The one
+/// place that knows what "fxaa" means (aliased coverage, then fxaa() over the finished image): the rasterizer has no
+/// FXAA mode, so a caller cannot ask it for one and forget the filter.
+struct AntiAliasMethod {
+  AntiAlias coverage = AntiAlias::Analytic;
+  bool fxaa = false;  ///< post-filter the finished image with fxaa() (coverage is then AntiAlias::None)
+
+  friend bool operator==(const AntiAliasMethod&, const AntiAliasMethod&) = default;
+};
+
+/// Every rasterizer mode's name (parse_anti_alias), plus "fxaa"; false for anything else (out unchanged).
+bool parse_anti_alias_method(std::string_view name, AntiAliasMethod& out);
+std::string_view to_string(const AntiAliasMethod& method);
+/// The post-filter `method` asks for, on a finished image or coverage plane: fxaa() when method.fxaa, else nothing.
+/// Drawing code calls it once, when the drawing is done.
+void post_filter(const AntiAliasMethod& method, Image& image);
+void post_filter(const AntiAliasMethod& method, Image16& image);
+void post_filter(const AntiAliasMethod& method, std::span<float> plane, int width, int height);
 
 }  // namespace vraster

@@ -53,8 +53,7 @@ enum class AntiAlias : std::uint8_t {
   Msaa4,     ///< 4 sparse samples, one per sub-row of a 4 x 4 grid (n-rooks; the Direct3D standard 4x pattern)
   Msaa8,     ///< 8 sparse samples on an 8 x 8 grid (n-rooks; the Direct3D standard 8x pattern)
   Msaa16,    ///< 16 sparse samples on a 16 x 16 grid (n-rooks; the Direct3D standard 16x pattern, cell-centred)
-  Fxaa,      ///< aliased coverage (as None) from the rasterizer; the image is then post-filtered by vraster::fxaa()
-             ///< (include/vraster/fxaa.hpp). The rasterizer alone cannot filter: callers that render images apply it
+  // FXAA is not a coverage mode: it filters a finished image (vraster/fxaa.hpp: AntiAliasMethod, post_filter).
 };
 
 /// Parses "evenodd", "nonzero", ... ; returns false for an unknown name.

@@ -43,6 +43,8 @@ struct FillOptions {
 };
 
 enum class HairlineMode : std::uint8_t;  // vraster/stroke.hpp
+struct StrokeStyle;
+struct StrokeRenderOptions;
 
 namespace detail {
 struct RendererScratch;  // src/paint/renderer.cpp: buffers of hairlines and masks
@@ -66,6 +68,13 @@ class Renderer {
   /// Coverage of `path`, mapped by `transform`, on a width x height device.
   void fill(const Path& path, const Affine& transform, const FillOptions& options, int width, int height,
             CoverageSink& sink);
+
+  /// Coverage of the stroke of `path` (user space) under `style`, mapped by `transform` (vraster/stroke.hpp):
+  /// strokes at least one device pixel wide are geometry (stroke_to_path, then fill() non-zero); thinner ones are
+  /// hairlines (thin_stroke_mode) with coverage scaled by their device width. Nothing for an invisible style or a
+  /// non-finite transform.
+  void stroke(const Path& path, const Affine& transform, const StrokeStyle& style, const StrokeRenderOptions& options,
+              int width, int height, CoverageSink& sink);
 
   /// Coverage of every contour of `path`, mapped by `transform` and flattened at 0.1 px, drawn as 1-device-pixel
   /// hairlines (see HairlineMode; vraster/stroke.hpp). Per-pixel algorithms hand over each pixel's summed

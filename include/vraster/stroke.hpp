@@ -64,12 +64,8 @@ DashVerdict check_dashes(const Path& path, const std::vector<double>& dashes);
 /// boundary (curves flattened at tolerance/2, round joins and caps with chord error <= tolerance/2).
 /// Zero-length subpaths (`M x y L x y`, `M x y Z`) give a dot with round or square caps (square aligned with
 /// the x axis) and nothing with butt caps; a lone `M x y` gives nothing.
-/// Returns an empty path for an invisible style. Throws vraster::Error when the outline would need more than
-/// kMaxStrokeOutlinePoints points (a stroke vastly wider than the tolerance on a long curve).
+/// Never throws for a valid Path; returns an empty path for an invisible style.
 Path stroke_to_path(const Path& path, const StrokeStyle& style, double tolerance);
-
-/// Most points one stroke outline may have (2^22, 64 MiB of points); see stroke_to_path.
-inline constexpr std::size_t kMaxStrokeOutlinePoints = std::size_t{1} << 22;
 
 /// The user-space tolerance that gives `device_tolerance` after `transform` (divides by the largest scale).
 double user_tolerance(const Affine& transform, double device_tolerance);
@@ -97,22 +93,26 @@ void draw_hairlines(Image& image, const Path& path, const Affine& transform, Col
 void hairline_coverage(const Path& path, const Affine& transform, HairlineMode mode, int width, int height,
                        CoverageSink& sink, float coverage_scale = 1.0f);
 
-/// Options for stroke_path().
+/// How Renderer::stroke (and stroke_path) turn a stroke into coverage.
 struct StrokeRenderOptions {
   AntiAlias aa = AntiAlias::Analytic;
   double tolerance = 0.1;  ///< device pixels
-  /// Strokes whose device width (width * sqrt|det|) is below 1 px are drawn as hairlines of this mode with
-  /// alpha scaled by the width, so they never vanish. With aa == None: Bresenham (or Dda if asked for).
-  /// With antialiasing: Wu or Analytic (Bresenham/Dda requests become Analytic). Image16 always uses Analytic.
+  /// Strokes whose device width (width * sqrt|det|) is below 1 px are drawn as hairlines with coverage scaled by
+  /// the width, so they never vanish; thin_stroke_mode(aa, thin_mode) picks the algorithm.
   HairlineMode thin_mode = HairlineMode::Analytic;
-  /// When set, this renderer (flattening buffer + rasterizer) is reused: no allocation in steady state.
+  /// stroke_path only: when set, this renderer (flattening buffer + rasterizer) is reused instead of a fresh one.
   Renderer* renderer = nullptr;
 };
 
-/// Strokes `path` in user space, maps the outline by `transform` and fills it (non-zero) with `color`
-/// (source-over). For Image (8-bit) and Image16. Draws nothing for an invisible style or a non-finite transform.
-/// Only the geometry that can reach the image is outlined (dashes are still cut along the whole path); throws
-/// vraster::Error when the visible outline passes kMaxStrokeOutlinePoints.
+/// The hairline algorithm of a stroke thinner than a device pixel (Renderer::stroke's one decision): aliased
+/// (aa == None) strokes take Bresenham (or Dda if requested); antialiased ones take Wu or Analytic (Bresenham and
+/// Dda requests become Analytic). The same for every image depth and compositor.
+HairlineMode thin_stroke_mode(AntiAlias aa, HairlineMode requested);
+
+/// Convenience for tools and tests: Renderer::stroke into a SolidCompositor, i.e. strokes `path` in user space,
+/// maps the outline by `transform` and fills it (non-zero) with one solid `color` source-over. For Image (8-bit)
+/// and Image16. Draws nothing for an invisible style or colour or a non-finite transform. Drawing code with paints,
+/// operators or clips calls Renderer::stroke with its own compositor (or uses the Canvas).
 template <class T>
 void stroke_path(BasicImage<T>& image, const Path& path, const Affine& transform, const StrokeStyle& style, Color color,
                  const StrokeRenderOptions& options = {});

@@ -1,6 +1,7 @@
 // vraster: everything in one include.
 #pragma once
 
+#include "vraster/canvas.hpp"
 #include "vraster/error.hpp"
 #include "vraster/flatten.hpp"
 #include "vraster/geometry.hpp"

@@ -37,9 +37,10 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-constexpr AntiAlias kMethods[] = {AntiAlias::None,   AntiAlias::Analytic, AntiAlias::Exact,  AntiAlias::Ssaa2,
-                                  AntiAlias::Ssaa4,  AntiAlias::Ssaa8,    AntiAlias::Ssaa16, AntiAlias::Msaa4,
-                                  AntiAlias::Msaa8,  AntiAlias::Msaa16,   AntiAlias::Fxaa};
+constexpr AntiAliasMethod kMethods[] = {
+    {AntiAlias::None},  {AntiAlias::Analytic}, {AntiAlias::Exact},  {AntiAlias::Ssaa2},
+    {AntiAlias::Ssaa4}, {AntiAlias::Ssaa8},    {AntiAlias::Ssaa16}, {AntiAlias::Msaa4},
+    {AntiAlias::Msaa8}, {AntiAlias::Msaa16},   {AntiAlias::None, /*fxaa=*/true}};
 constexpr int kMethodCount = static_cast<int>(std::size(kMethods));
 
 Color method_color(int m) {
@@ -282,7 +283,7 @@ class AlphaSink final : public CoverageSink {
   int width_;
 };
 
-std::vector<float> scene_coverage(const svg::Document& doc, AntiAlias aa, Renderer& renderer) {
+std::vector<float> scene_coverage(const svg::Document& doc, const AntiAliasMethod& aa, Renderer& renderer) {
   std::vector<float> alpha(static_cast<std::size_t>(doc.width) * doc.height, 0.0f);
   AlphaSink sink(alpha, doc.width);
   const double tol = kDefaultTolerance;
@@ -297,23 +298,23 @@ std::vector<float> scene_coverage(const svg::Document& doc, AntiAlias aa, Render
       rule = FillRule::NonZero;
     }
     const Polylines& lines = renderer.flatten_for_fill(*path, item.transform, tol, doc.width, doc.height);
-    renderer.rasterizer().fill(lines, rule, aa, doc.width, doc.height, sink);
+    renderer.rasterizer().fill(lines, rule, aa.coverage, doc.width, doc.height, sink);
   }
-  if (aa == AntiAlias::Fxaa) fxaa(std::span<float>(alpha), doc.width, doc.height);
+  post_filter(aa, std::span<float>(alpha), doc.width, doc.height);
   return alpha;
 }
 
 // `coverage_ms`: how long the coverage pass of the same method took (it has already grown the buffers, so a slow
 // case needs no separate warm-up frame).
-double median_ms(const svg::Document& doc, AntiAlias aa, int frames, double coverage_ms, Renderer& renderer,
+double median_ms(const svg::Document& doc, const AntiAliasMethod& aa, int frames, double coverage_ms, Renderer& renderer,
                  Image& image) {
   svg::RenderSettings settings;
-  settings.aa = aa;
+  settings.aa = aa.coverage;
   auto frame = [&] {
     const auto t0 = Clock::now();
     image.clear(Color{1, 1, 1, 1});
     svg::render(doc, image, settings, renderer);
-    if (aa == AntiAlias::Fxaa) fxaa(image);
+    post_filter(aa, image);
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   };
   // Slow cases get fewer frames (and no warm-up) so the default run stays short.

@@ -35,3 +35,15 @@ void warn_about_exact_fallbacks(Renderer& renderer);
 std::string_view demo_svg();
 
 }  // namespace vraster::cli
+
+namespace vraster {
+class Canvas;
+}
+
+namespace vraster::cli {
+
+/// The demo's second part, drawn through the canvas into the band [top, top + height) (src/cli/demo.cpp).
+void draw_canvas_panel(Canvas& canvas, double top, double width, double height);
+inline constexpr int kDemoPanelHeight = 220;
+
+}  // namespace vraster::cli

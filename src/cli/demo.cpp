@@ -1,5 +1,13 @@
-// The embedded demo scene: fill rules, curves, arcs, transparency and fine detail in one picture.
+// The embedded demo: an SVG scene (fill rules, curves, arcs, transparency and fine detail in one picture) and a
+// panel under it drawn through the canvas (gradients, clips, layers, blend modes, text).
+#include <cmath>
+#include <numbers>
+
 #include "cli/cli.hpp"
+#include "vraster/canvas.hpp"
+#if VRASTER_WITH_TEXT
+#include "vraster_text/canvas_text.hpp"
+#endif
 
 namespace vraster::cli {
 
@@ -44,6 +52,113 @@ std::string_view demo_svg() {
            m10 0a30 30 0 1 0 60 0a30 30 0 1 0-60 0zm10 0a20 20 0 1 1 40 0a20 20 0 1 1-40 0z" fill="#117a65"/>
 </svg>
 )SVG";
+}
+
+}  // namespace vraster::cli
+
+// ---- the canvas panel under the SVG scene ----
+
+namespace vraster::cli {
+namespace {
+
+constexpr double kTau = 2 * std::numbers::pi;
+
+Color hex(unsigned rgb, float alpha = 1) {
+  return Color::rgb8(static_cast<int>(rgb >> 16), static_cast<int>(rgb >> 8 & 255), static_cast<int>(rgb & 255))
+      .with_alpha(alpha);
+}
+
+// Text in the current fill paint, left-aligned at x or centred on it (nothing when the text library is not built).
+#if VRASTER_WITH_TEXT
+void label(Canvas& c, std::string_view text, double x, double y, double size, bool centred) {
+  static const text::FontList fonts = text::FontList::default_list();
+  text::CanvasFont font;
+  font.fonts = fonts;
+  font.style.size = size;
+  font.align = centred ? text::TextAlign::Center : text::TextAlign::Left;
+  text::fill_text(c, font, text, x, y);
+}
+#else
+void label(Canvas&, std::string_view, double, double, double, bool) {}
+#endif
+
+}  // namespace
+
+void draw_canvas_panel(Canvas& c, double top, double width, double height) {
+  c.save();
+  c.translate(0, top);
+  // A banner with a horizontal gradient.
+  Paint banner = Paint::linear({0, 0}, {width, 0});
+  banner.add_stop(0, hex(0x1b2631));
+  banner.add_stop(0.5, hex(0x2e4053));
+  banner.add_stop(1, hex(0x512e5f));
+  c.set_fill_paint(banner);
+  c.fill_rect(0, 0, width, height);
+  c.set_fill_color(hex(0xffffff));
+  label(c, "drawn through vraster::Canvas: gradients, clips, layers, blend modes, text", 20, 26, 15,
+        false);
+
+  // Blend modes: each swatch is a layer holding a blue square and an orange disc drawn with the operator.
+  static constexpr CompositeOp kOps[] = {CompositeOp::SourceOver, CompositeOp::Multiply, CompositeOp::Screen,
+                                         CompositeOp::Difference, CompositeOp::Xor, CompositeOp::DestinationOut};
+  for (int i = 0; i < 6; ++i) {
+    const double x = 20 + i * 72;
+    c.begin_layer();
+    c.set_fill_color(hex(0x2e86c1));
+    c.fill_rect(x, 46, 44, 44);
+    c.set_composite(kOps[i]);
+    c.set_fill_color(hex(0xf39c12));
+    c.begin_path();
+    c.arc(x + 44, 90, 24, 0, kTau);
+    c.fill();
+    c.end_layer();
+    c.set_fill_color(hex(0xecf0f1));
+    label(c, to_string(kOps[i]), x + 34, 134, 11, true);
+  }
+
+  // A clip: a conic gradient seen through a star, with a radial highlight.
+  c.save();
+  c.begin_path();
+  for (int k = 0; k < 10; ++k) {
+    const double r = k % 2 ? 24 : 60, a = k * kTau / 10 - kTau / 4;
+    const double px = 510 + r * std::cos(a), py = 100 + r * std::sin(a);
+    k == 0 ? c.move_to(px, py) : c.line_to(px, py);
+  }
+  c.close_path();
+  c.clip(FillRule::NonZero);
+  Paint sweep = Paint::conic(0, {510, 100});
+  sweep.add_stop(0, hex(0xe74c3c));
+  sweep.add_stop(0.33, hex(0xf1c40f));
+  sweep.add_stop(0.66, hex(0x27ae60));
+  sweep.add_stop(1, hex(0xe74c3c));
+  c.set_fill_paint(sweep);
+  c.fill_rect(440, 30, 140, 140);
+  Paint glow = Paint::radial({500, 85}, 0, {510, 100}, 60);
+  glow.add_stop(0, hex(0xffffff, 0.8f));
+  glow.add_stop(1, hex(0xffffff, 0));
+  c.set_fill_paint(glow);
+  c.fill_rect(440, 30, 140, 140);
+  c.restore();
+
+  // A layer at 50% opacity over a dashed outline: overlapping shapes inside it do not darken each other.
+  c.set_stroke_color(hex(0xecf0f1));
+  c.set_line_width(2);
+  const double dashes[] = {8, 5};
+  c.set_line_dash(dashes);
+  c.stroke_rect(20.5, 150.5, 420, 56);
+  c.set_line_dash({});
+  c.begin_layer(0.5f);
+  c.set_fill_color(hex(0xf7dc6f));
+  c.begin_path();
+  c.round_rect(30, 158, 200, 40, 12);
+  c.fill();
+  c.begin_path();
+  c.ellipse(230, 178, 90, 20, 0, 0, kTau);
+  c.fill();
+  c.set_fill_color(hex(0x1b2631));
+  label(c, "a layer at 50%", 130, 184, 16, true);
+  c.end_layer();
+  c.restore();
 }
 
 }  // namespace vraster::cli

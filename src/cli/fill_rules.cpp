@@ -89,7 +89,7 @@ void frame(Image& sheet, int x0, int y0, int w, int h) {
 int run_fill_rules(int argc, char** argv) {
   std::string input, output;
   bool winding = false;
-  AntiAlias aa = AntiAlias::Exact;
+  AntiAliasMethod aa{AntiAlias::Exact, false};
   int panel_size = 240;
   for (int i = 2; i < argc; ++i) {
     const std::string_view arg = argv[i];
@@ -103,7 +103,7 @@ int run_fill_rules(int argc, char** argv) {
       winding = true;
     } else if (arg == "--aa") {
       const auto v = value();
-      if (!parse_anti_alias(v, aa)) throw UsageError{"--aa: unknown mode " + quoted(v)};
+      if (!parse_anti_alias_method(v, aa)) throw UsageError{"--aa: unknown mode " + quoted(v)};
     } else if (arg == "--panel") {
       const std::string v(value());
       panel_size = std::atoi(v.c_str());
@@ -164,13 +164,13 @@ int run_fill_rules(int argc, char** argv) {
     }
     FillOptions options;
     options.rule = kRules[k];
-    options.aa = aa;
+    options.aa = aa.coverage;
     for (const svg::DrawItem& item : doc.items) {
       if (!item.is_fill()) continue;  // the sheet compares fill rules: strokes are left out
       const Color color = winding ? kInk.with_alpha(0.55f) : item.color;
       renderer.fill(panel, item.path, to_panel * item.transform, color, options);
     }
-    if (aa == AntiAlias::Fxaa) fxaa(panel);  // the rasterizer draws fxaa aliased: the filter finishes each panel
+    post_filter(aa, panel);  // fxaa: each panel is a finished image (its frame and label are drawn after)
     const int ox = margin + (k % columns) * cell_w, oy = margin + (k / columns) * cell_h;
     paste(sheet, panel, ox, oy);
     frame(sheet, ox, oy, pw, ph);

@@ -16,6 +16,7 @@
 #include "cli/cli.hpp"
 #include "cli/image_compare.hpp"
 #include "svg_subset/svg.hpp"
+#include "vraster/canvas.hpp"
 #include "vraster/fxaa.hpp"
 #include "vraster/files.hpp"
 #include "vraster/vraster.hpp"
@@ -51,6 +52,7 @@ struct RenderArgs {
   std::string input;
   std::string output;
   svg::RenderSettings settings;
+  AntiAliasMethod aa;  ///< --aa: settings.aa is its coverage mode; the post-filter runs on each finished frame
   int depth = 8;
   Color background = Color::transparent();
   int bench_frames = 0;
@@ -104,7 +106,8 @@ RenderArgs parse_render_args(int argc, char** argv) {
       a.quiet = true;
     } else if (arg == "--aa") {
       const auto v = r.value(arg);
-      if (!parse_anti_alias(v, a.settings.aa)) throw UsageError{"--aa: unknown mode " + quoted(v)};
+      if (!parse_anti_alias_method(v, a.aa)) throw UsageError{"--aa: unknown mode " + quoted(v)};
+      a.settings.aa = a.aa.coverage;
     } else if (arg == "--rule") {
       const auto v = r.value(arg);
       FillRule rule;
@@ -158,7 +161,7 @@ void render_document(const svg::Document& doc, const RenderArgs& a) {
   auto frame = [&] {
     image.clear(a.background);
     svg::render(doc, image, a.settings, renderer);
-    if (a.settings.aa == AntiAlias::Fxaa) fxaa(image);  // fxaa: aliased render + post-filter
+    post_filter(a.aa, image);  // fxaa: the aliased render, then the filter
   };
   if (a.bench_frames > 0) {
     frame();  // warm-up: buffers reach their steady-state size
@@ -215,12 +218,16 @@ int run_demo(int argc, char** argv) {
     }
   }
   const svg::Document doc = svg::parse_svg(demo_svg(), "<demo>");
-  Image image(doc.width, doc.height);
+  Image image(doc.width, doc.height + kDemoPanelHeight);
   image.clear(Color{1, 1, 1, 1});
   Renderer renderer;
   svg::render(doc, image, svg::RenderSettings{}, renderer);
+  {
+    Canvas canvas(image);
+    draw_canvas_panel(canvas, doc.height, doc.width, kDemoPanelHeight);
+  }
   write_png(output, image);
-  std::cout << "vraster demo: wrote " << output << " (" << doc.width << "x" << doc.height << ")\n";
+  std::cout << "vraster demo: wrote " << output << " (" << image.width << "x" << image.height << ")\n";
   return 0;
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -10,14 +11,24 @@
 
 namespace vraster {
 
+namespace {
+// A side for a message: whole pixels while they fit an integer, else in exponent form (casting 1e50 to an
+// integer type is undefined).
+std::string side_text(double v) {
+  if (v < 1e15) return std::to_string(static_cast<long long>(v));
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+}  // namespace
+
 void check_image_size(double width, double height) {
   if (!std::isfinite(width) || !std::isfinite(height) || width < 1 || height < 1) {
     throw Error("image size " + std::to_string(width) + "x" + std::to_string(height) +
                 " is not a positive size");
   }
   if (width > kMaxImageSide || height > kMaxImageSide || width * height > static_cast<double>(kMaxImagePixels)) {
-    throw Error("image size " + std::to_string(static_cast<long long>(width)) + "x" +
-                std::to_string(static_cast<long long>(height)) + " is too large (at most " +
+    throw Error("image size " + side_text(width) + "x" + side_text(height) + " is too large (at most " +
                 std::to_string(kMaxImageSide) + " pixels a side and " + std::to_string(kMaxImagePixels) +
                 " pixels)");
   }

@@ -45,6 +45,9 @@ struct Prepared {
   double l1x, l1y, l2x, l2y;
   double depth_bias = 0;
   double depth_slope = 0;  // largest depth change per pixel along x or y
+  double dzdx = 0;         // depth change per pixel along x
+  bool linear_color = false;  // colours affine on screen (not Phong, not perspective): dcdx is their step along x
+  float dcdx[4] = {0, 0, 0, 0};
   Color color[3];          // straight; flat: all three the same
   Vec3 n[3], eye[3];       // Phong only
 
@@ -147,6 +150,14 @@ bool prepare(const Mesh& mesh, const std::array<std::uint32_t, 3>& tri, const Me
       break;
   }
   for (Color& c : t.color) c.a = std::clamp(c.a, 0.f, 1.f) * opacity;
+  t.dzdx = dzdx;
+  t.linear_color = !t.perspective && o.shading != Shading::Phong;
+  if (t.linear_color) {
+    auto step = [&](float Color::*ch) {
+      return static_cast<float>(t.l1x * (t.color[1].*ch - t.color[0].*ch) + t.l2x * (t.color[2].*ch - t.color[0].*ch));
+    };
+    t.dcdx[0] = step(&Color::r), t.dcdx[1] = step(&Color::g), t.dcdx[2] = step(&Color::b), t.dcdx[3] = step(&Color::a);
+  }
   return true;
 }
 
@@ -320,13 +331,17 @@ void MeshRenderer::draw(ImageView<T> target, const Mesh& mesh, const MeshOptions
         float* zrow = use_depth ? depth->row(y) : nullptr;
         T* s = src.data();
         bool all_pass = true;
+        // Depth, and colours when they are affine on screen, step along the span from its first centre.
+        double start[3];
+        t.weights(x0 + 0.5, y + 0.5, start);
+        const double z_start = t.depth_at(start);
+        const Color c_start = t.linear_color ? fragment_color(t, options, start) : Color{};
         for (int x = x0; x < x1; ++x, s += 4) {
-          double lambda[3];
-          t.weights(x + 0.5, y + 0.5, lambda);
-          float& cov = b.coverage[static_cast<std::size_t>(x - x0)];
+          const int i = x - x0;
+          float& cov = b.coverage[static_cast<std::size_t>(i)];
           cov = 1;
           if (zrow != nullptr) {
-            const float z = static_cast<float>(t.depth_at(lambda));
+            const float z = static_cast<float>(z_start + i * t.dzdx);
             if (!(z < zrow[x])) {
               cov = 0, all_pass = false;
               ++stats_.depth_rejected;
@@ -335,7 +350,15 @@ void MeshRenderer::draw(ImageView<T> target, const Mesh& mesh, const MeshOptions
             }
             if (options.write_depth) zrow[x] = z;
           }
-          double w[3];
+          if (t.linear_color) {
+            const float k = static_cast<float>(i);
+            store_premultiplied(Color{c_start.r + k * t.dcdx[0], c_start.g + k * t.dcdx[1],
+                                      c_start.b + k * t.dcdx[2], c_start.a + k * t.dcdx[3]},
+                                1.f, s);
+            continue;
+          }
+          double lambda[3], w[3];
+          t.weights(x + 0.5, y + 0.5, lambda);
           t.attribute_weights(lambda, w);
           store_premultiplied(fragment_color(t, options, w), 1.f, s);
         }

@@ -1,12 +1,15 @@
 // Private: the per-pixel composite operators and the run loop shared by blend_row and Compositor.
 //
 // Rounding (docs/design.md, "Paint and compositing"): with M = 255 (8 bits) or 65535 (16 bits),
+// Three image operations, each rounded to nearest once (the HTML canvas model: the shape is an image, at the
+// target's depth, whose alpha is its coverage; it is composited with the operator; the clip then lerps):
 //   1. coverage x global alpha and the clip are quantized: k = round(M * clamp(cov, 0, 1)), c likewise;
-//   2. Porter-Duff operators and lighter: the formula d + (Op(s k / M, d) - d) c / M evaluated exactly on these
-//      integers (one integer expression over M^3) and rounded once to nearest;
-//   3. blend modes: the same formula in float (8 bits) or double (16 bits), rounded once to nearest (within
-//      0.51 of a level of the exact value).
-// Division by an odd M (or its powers) never meets a tie, so "rounded to nearest" needs no tie rule.
+//      the source is scaled: s' = round(s k / M) per channel;
+//   2. r = round(Op(s', d)): Porter-Duff operators, lighter and the polynomial blend modes (multiply, screen,
+//      darken, lighten, difference, exclusion) as one integer expression, exact; the other blend modes in float
+//      (8 bits) or double (16 bits), within 0.51 of a level;
+//   3. out = round((d (M - c) + r c) / M).
+// Division by an odd M never meets a tie, so "rounded to nearest" needs no tie rule.
 #pragma once
 
 #include <algorithm>
@@ -157,7 +160,7 @@ inline void blend_non_separable(const R* cb, const R* cs, R* out) {
   }
 }
 
-/// Porter-Duff operators and lighter on one pixel at full coverage and clip: r = round(s Fa + d Fb), exact.
+/// Porter-Duff operators and lighter on one pixel: r = round(s Fa + d Fb), exact.
 template <class T, CompositeOp Op>
 inline void porter_duff_pixel(const T* s, const T* d, T* r) {
   using CM = ChannelMath<T>;
@@ -171,42 +174,48 @@ inline void porter_duff_pixel(const T* s, const T* d, T* r) {
   }
 }
 
-/// Porter-Duff operators and lighter with quantized coverage k and clip c (both in [0, M]), rounded once:
-/// the source scaled by k / M is s k / M, so every term of s Fa + d Fb is an integer over M^2, and the clip lerp
-/// d + (r - d) c / M an integer over M^3. The sums fit: M^4 < 2^64 for M = 65535, M^3 < 2^32 for M = 255 (the
-/// 8-bit clip lerp uses 64 bits).
+/// Blend modes whose premultiplied form is a polynomial with min / max (multiply, screen, darken, lighten,
+/// difference, exclusion): the W3C formula co = cs (1 - ab) + cb (1 - as) + as ab B(cb / ab, cs / as) rewritten on
+/// premultiplied integers (e.g. darken: co = cs + cb - max(cs ab, cb as) / M), rounded once: exact.
+constexpr bool is_integer_blend(CompositeOp op) {
+  return op == CompositeOp::Multiply || op == CompositeOp::Screen || op == CompositeOp::Darken ||
+         op == CompositeOp::Lighten || op == CompositeOp::Difference || op == CompositeOp::Exclusion;
+}
+
 template <class T, CompositeOp Op>
-inline void porter_duff_pixel(const T* s, const T* d, T* r, std::uint64_t k, std::uint64_t c) {
-  constexpr std::uint64_t M = ChannelMath<T>::M, M2 = M * M, M3 = M2 * M;
-  const std::uint64_t as_k = std::uint64_t{s[3]} * k;  // source alpha after coverage, over M^2
-  std::uint64_t fa, fb2;                               // fa over M, fb2 over M^2
-  porter_duff_factors<Op, std::uint64_t>(M, s[3], d[3], fa, fb2);
-  switch (Op) {  // factors that depend on the source alpha see it scaled by coverage
-    case CompositeOp::SourceOver: case CompositeOp::DestinationOut: case CompositeOp::SourceAtop:
-    case CompositeOp::Xor: fb2 = M2 - as_k; break;
-    case CompositeOp::DestinationIn: case CompositeOp::DestinationAtop: fb2 = as_k; break;
-    default: fb2 *= M; break;
-  }
-  for (int ch = 0; ch < 4; ++ch) {
-    std::uint64_t n = std::uint64_t{s[ch]} * k * fa + std::uint64_t{d[ch]} * fb2;  // over M^2
-    if (n > M3) n = M3;                                                           // lighter saturates
-    const std::uint64_t v = c == M ? (n + M2 / 2) / M2 : (std::uint64_t{d[ch]} * (M - c) * M2 + n * c + M3 / 2) / M3;
-    r[ch] = static_cast<T>(v);
+inline void integer_blend_pixel(const T* s, const T* d, T* r) {
+  using CM = ChannelMath<T>;
+  using S = std::int64_t;
+  constexpr S M = CM::M;
+  const S as = s[3], ab = d[3];
+  const S ao = as + static_cast<S>(CM::div(static_cast<typename CM::Wide>(ab * (M - as))));
+  r[3] = static_cast<T>(ao);
+  for (int c = 0; c < 3; ++c) {
+    const S cs = s[c], cb = d[c];
+    S n;  // co * M
+    switch (Op) {
+      case CompositeOp::Multiply: n = cs * (M - ab) + cb * (M - as) + cs * cb; break;
+      case CompositeOp::Screen: n = (cs + cb) * M - cs * cb; break;
+      case CompositeOp::Darken: n = (cs + cb) * M - std::max(cs * ab, cb * as); break;
+      case CompositeOp::Lighten: n = (cs + cb) * M - std::min(cs * ab, cb * as); break;
+      case CompositeOp::Difference: n = (cs + cb) * M - 2 * std::min(cs * ab, cb * as); break;
+      default: n = (cs + cb) * M - 2 * cs * cb; break;  // exclusion
+    }
+    const S v = n > 0 ? (n + M / 2) / M : 0;
+    r[c] = static_cast<T>(v < ao ? v : ao);
   }
 }
 
-/// Blend modes on one pixel: co = cs (1 - ab) + cb (1 - as) + as ab B(Cb, Cs), ao = as + ab - as ab, with the
-/// source scaled by k / M and the result lerped by c / M, in float (8 bits) or double (16 bits), rounded once.
+/// The other blend modes on one pixel, in float (8 bits) or double (16 bits), rounded once.
 template <class T, CompositeOp Op>
-inline void blend_mode_pixel(const T* s, const T* d, T* r, std::uint64_t k, std::uint64_t c) {
+inline void blend_mode_pixel(const T* s, const T* d, T* r) {
   using CM = ChannelMath<T>;
   using W = typename CM::Wide;
   using R = typename CM::Real;
   constexpr R inv = R(1) / R(CM::M);
-  const R ks = R(k) * inv, kc = R(c) * inv;
   R sv[4], dv[4];
   for (int ch = 0; ch < 4; ++ch) {
-    sv[ch] = R(s[ch]) * inv * ks;
+    sv[ch] = R(s[ch]) * inv;
     dv[ch] = R(d[ch]) * inv;
   }
   const R as = sv[3], ab = dv[3];
@@ -220,17 +229,66 @@ inline void blend_mode_pixel(const T* s, const T* d, T* r, std::uint64_t k, std:
   } else {
     blend_non_separable<Op, R>(cb, cs, b);
   }
-  R out[4];
-  for (int ch = 0; ch < 3; ++ch) out[ch] = sv[ch] * (1 - ab) + dv[ch] * (1 - as) + as * ab * b[ch];
-  out[3] = as + ab - as * ab;
-  W q[4];
-  for (int ch = 0; ch < 4; ++ch) {
-    const R v = (dv[ch] + (out[ch] - dv[ch]) * kc) * R(CM::M) + R(0.5);
-    q[ch] = v > 0 ? std::min<W>(CM::M, static_cast<W>(v)) : 0;
+  const W ao = std::min<W>(CM::M, W{s[3]} + CM::div(W{d[3]} * (CM::M - s[3])));
+  r[3] = static_cast<T>(ao);
+  for (int ch = 0; ch < 3; ++ch) {
+    const R v = (sv[ch] * (1 - ab) + dv[ch] * (1 - as) + as * ab * b[ch]) * R(CM::M) + R(0.5);
+    const W q = v > 0 ? static_cast<W>(v) : 0;
+    r[ch] = static_cast<T>(q < ao ? q : ao);
   }
-  for (int ch = 0; ch < 3; ++ch) r[ch] = static_cast<T>(q[ch] < q[3] ? q[ch] : q[3]);
-  r[3] = static_cast<T>(q[3]);
 }
+
+template <class T, CompositeOp Op>
+inline void operator_pixel(const T* s, const T* d, T* r) {
+  if constexpr (!is_blend_mode(Op)) {
+    porter_duff_pixel<T, Op>(s, d, r);
+  } else if constexpr (is_integer_blend(Op)) {
+    integer_blend_pixel<T, Op>(s, d, r);
+  } else {
+    blend_mode_pixel<T, Op>(s, d, r);
+  }
+}
+
+// ---- 8-bit source-over: one uint32 per pixel (R in the low byte), two channels per multiply ----
+
+/// round(px * f / 255) per channel, exact for every px channel and f in [0, 255] (tested exhaustively).
+inline std::uint32_t scale8(std::uint32_t px, std::uint32_t f) {
+  std::uint32_t rb = (px & 0x00FF00FFu) * f + 0x00800080u;
+  rb = ((rb + ((rb >> 8) & 0x00FF00FFu)) >> 8) & 0x00FF00FFu;
+  std::uint32_t ag = ((px >> 8) & 0x00FF00FFu) * f + 0x00800080u;
+  ag = ((ag + ((ag >> 8) & 0x00FF00FFu)) >> 8) & 0x00FF00FFu;
+  return rb | (ag << 8);
+}
+
+/// round((d * (255 - c) + r * c) / 255) per channel: the clip lerp, exact (each lane sum is at most 255 * 255).
+inline std::uint32_t lerp8(std::uint32_t d, std::uint32_t r, std::uint32_t c) {
+  const std::uint32_t ic = 255u - c;
+  std::uint32_t rb = (d & 0x00FF00FFu) * ic + (r & 0x00FF00FFu) * c + 0x00800080u;
+  rb = ((rb + ((rb >> 8) & 0x00FF00FFu)) >> 8) & 0x00FF00FFu;
+  std::uint32_t ag = ((d >> 8) & 0x00FF00FFu) * ic + ((r >> 8) & 0x00FF00FFu) * c + 0x00800080u;
+  ag = ((ag + ((ag >> 8) & 0x00FF00FFu)) >> 8) & 0x00FF00FFu;
+  return rb | (ag << 8);
+}
+
+/// s + round(d (255 - as) / 255): source-over, exact.
+inline std::uint32_t over8(std::uint32_t s, std::uint32_t d) { return s + scale8(d, 255u - (s >> 24)); }
+
+/// round(255 * clamp(v, 0, 1)), NaN -> 0, written so that it vectorises.
+inline std::uint32_t quantize8(float v) {
+  // Branch-free clamp (NaN fails v > 0 and becomes 0); the conversion of v * 255 + 0.5 in [0.5, 255.5] truncates.
+  const float lo = __builtin_isgreater(v, 0.f) ? v : 0.f;
+  const float hi = lo < 1.f ? lo : 1.f;
+  return static_cast<std::uint32_t>(static_cast<std::int32_t>(hi * 255.f + 0.5f));
+}
+
+// The source-over loops (composite.cpp: compiled for AVX2 and for any x86-64, picked at load time).
+/// One colour, one coverage for the whole run.
+void over8_constant(std::uint32_t* px, int n, std::uint32_t s);
+/// A row of colours scaled by one coverage k.
+void over8_row(std::uint32_t* px, const std::uint32_t* src, int n, std::uint32_t k);
+/// Colours (src_step 0: one colour) scaled by per-pixel coverage x scale, optionally lerped by a clip.
+void over8_masked(std::uint32_t* px, const std::uint32_t* src, int src_step, const float* coverage, float scale,
+                  const float* clip, int n);
 
 /// Composites n pixels. The source advances by `src_step` channels a pixel (0: one colour for the whole run).
 /// coverage == nullptr: every pixel has coverage `scale`; else coverage[i] * scale. clip may be null (all 1).
@@ -239,6 +297,27 @@ void composite_run(T* dst, const T* src, int src_step, const float* coverage, fl
   using CM = ChannelMath<T>;
   using W = typename CM::Wide;
   constexpr W M = CM::M;
+  if constexpr (sizeof(T) == 1 && Op == CompositeOp::SourceOver) {
+    auto* px = reinterpret_cast<std::uint32_t*>(static_cast<void*>(dst));
+    const auto* s = reinterpret_cast<const std::uint32_t*>(static_cast<const void*>(src));
+    if (coverage == nullptr && clip == nullptr) {
+      const std::uint32_t k = quantize8(scale);
+      if (k == 0) return;
+      if (src_step == 0) {
+        const std::uint32_t c = k == 255 ? s[0] : scale8(s[0], k);
+        if (c >> 24 == 255) {
+          std::fill(px, px + n, c);  // opaque: a store
+        } else if (c != 0) {
+          over8_constant(px, n, c);
+        }
+      } else {
+        over8_row(px, s, n, k);
+      }
+    } else {
+      over8_masked(px, s, src_step / 4, coverage, scale, clip, n);
+    }
+    return;
+  }
   constexpr bool bounded = Op != CompositeOp::Copy && Op != CompositeOp::Clear && Op != CompositeOp::SourceIn &&
                            Op != CompositeOp::SourceOut && Op != CompositeOp::DestinationIn &&
                            Op != CompositeOp::DestinationAtop;
@@ -248,15 +327,18 @@ void composite_run(T* dst, const T* src, int src_step, const float* coverage, fl
     const W c = clip ? CM::quantize(clip[i]) : M;
     if (c == 0) continue;
     if (bounded && (k == 0 || src[3] == 0)) continue;
-    T r[4];
-    if constexpr (is_blend_mode(Op)) {
-      blend_mode_pixel<T, Op>(src, dst, r, k, c);
-    } else if (k == M && c == M) {
-      porter_duff_pixel<T, Op>(src, dst, r);
+    T s[4], r[4];
+    if (k == M) {
+      for (int ch = 0; ch < 4; ++ch) s[ch] = src[ch];
     } else {
-      porter_duff_pixel<T, Op>(src, dst, r, k, c);
+      for (int ch = 0; ch < 4; ++ch) s[ch] = static_cast<T>(CM::div(W{src[ch]} * k));
     }
-    for (int ch = 0; ch < 4; ++ch) dst[ch] = r[ch];
+    operator_pixel<T, Op>(s, dst, r);
+    if (c == M) {
+      for (int ch = 0; ch < 4; ++ch) dst[ch] = r[ch];
+    } else {
+      for (int ch = 0; ch < 4; ++ch) dst[ch] = static_cast<T>(CM::div(W{dst[ch]} * (M - c) + W{r[ch]} * c));
+    }
   }
 }
 

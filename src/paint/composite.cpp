@@ -3,7 +3,8 @@
 // Where each "only what a draw call needs" decision is taken (docs/design.md):
 //   set():   invisible paint or zero global alpha with a bounded operator -> draws_nothing(), every call returns;
 //            the paint is prepared once (solid colour premultiplied, gradient tables, inverse transforms).
-//   span():  solid source-over at full coverage with an opaque colour -> a plain store, no read of the target;
+//   span():  at full coverage, an opaque paint with source-over, or any paint with copy, replaces the target:
+//            a constant colour is stored, other paints are shaded straight into the target (no blend, no read);
 //            constant colours are never shaded into a buffer (the run loop reads one colour);
 //   run loop (blend.hpp): bounded operators skip pixels with zero coverage, clip or source alpha.
 #include <algorithm>
@@ -16,6 +17,57 @@
 
 namespace vraster {
 namespace detail {
+
+// The loops below are compiled for AVX2 and for any x86-64 and picked at load time.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define VRASTER_PAINT_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define VRASTER_PAINT_CLONES
+#endif
+
+/// One colour, one coverage for the whole run.
+VRASTER_PAINT_CLONES void over8_constant(std::uint32_t* px, int n, std::uint32_t s) {
+  const std::uint32_t inv = 255u - (s >> 24);
+  for (int i = 0; i < n; ++i) px[i] = s + scale8(px[i], inv);
+}
+
+/// A row of colours scaled by one coverage k.
+VRASTER_PAINT_CLONES void over8_row(std::uint32_t* px, const std::uint32_t* src, int n, std::uint32_t k) {
+  if (k == 255) {
+    for (int i = 0; i < n; ++i) px[i] = over8(src[i], px[i]);
+  } else {
+    for (int i = 0; i < n; ++i) px[i] = over8(scale8(src[i], k), px[i]);
+  }
+}
+
+/// Colours (src_step 0: one colour) scaled by per-pixel coverage x scale, optionally lerped by a clip. Each case
+/// is its own loop so that the compiler vectorises it (a run-time source step would make every load a gather).
+VRASTER_PAINT_CLONES void over8_masked(std::uint32_t* px, const std::uint32_t* src, int src_step,
+                                       const float* coverage, float scale, const float* clip, int n) {
+  const std::uint32_t k = quantize8(scale);
+  if (src_step == 0) {
+    const std::uint32_t c = src[0];
+    if (clip == nullptr) {
+      for (int i = 0; i < n; ++i) px[i] = over8(scale8(c, quantize8(coverage[i] * scale)), px[i]);
+    } else if (coverage == nullptr) {
+      const std::uint32_t s = scale8(c, k);
+      for (int i = 0; i < n; ++i) px[i] = lerp8(px[i], over8(s, px[i]), quantize8(clip[i]));
+    } else {
+      for (int i = 0; i < n; ++i) {
+        px[i] = lerp8(px[i], over8(scale8(c, quantize8(coverage[i] * scale)), px[i]), quantize8(clip[i]));
+      }
+    }
+  } else if (clip == nullptr) {
+    for (int i = 0; i < n; ++i) px[i] = over8(scale8(src[i], quantize8(coverage[i] * scale)), px[i]);
+  } else if (coverage == nullptr) {
+    for (int i = 0; i < n; ++i) px[i] = lerp8(px[i], over8(scale8(src[i], k), px[i]), quantize8(clip[i]));
+  } else {
+    for (int i = 0; i < n; ++i) {
+      px[i] = lerp8(px[i], over8(scale8(src[i], quantize8(coverage[i] * scale)), px[i]), quantize8(clip[i]));
+    }
+  }
+}
+
 
 template <class T>
 CompositeRunFn<T> composite_run_for(CompositeOp op) {
@@ -48,6 +100,16 @@ void blend_row(CompositeOp op, T* dst, const T* src, const float* coverage, cons
 template void blend_row<std::uint8_t>(CompositeOp, std::uint8_t*, const std::uint8_t*, const float*, const float*, int);
 template void blend_row<std::uint16_t>(CompositeOp, std::uint16_t*, const std::uint16_t*, const float*, const float*,
                                        int);
+
+template <class T>
+void blend_row_alpha(CompositeOp op, T* dst, const T* src, float alpha, const float* clip, int count) {
+  if (count <= 0) return;
+  detail::composite_run_for<T>(op)(dst, src, 4, nullptr, alpha, clip, count);
+}
+
+template void blend_row_alpha<std::uint8_t>(CompositeOp, std::uint8_t*, const std::uint8_t*, float, const float*, int);
+template void blend_row_alpha<std::uint16_t>(CompositeOp, std::uint16_t*, const std::uint16_t*, float, const float*,
+                                             int);
 
 template <class T>
 struct Compositor<T>::State {
@@ -115,7 +177,9 @@ void Compositor<T>::span(int y, int x0, int x1, float coverage) {
   if (s.nothing || !s.clip_to_view(y, x0, x1, skip)) return;
   const int n = x1 - x0;
   T* dst = s.view.pixel(x0, y);
-  if (s.solid_over && s.shader.is_opaque() && coverage >= 1 && s.alpha >= 1) {
+  const bool full = coverage >= 1 && s.alpha >= 1;
+  if (full && s.shader.is_constant() && (s.op == CompositeOp::Copy || (s.solid_over && s.shader.is_opaque()))) {
+    // A constant colour that replaces the destination: a store.
     const T* c = s.shader.color();
     if constexpr (sizeof(T) == 1) {
       std::uint32_t packed;
@@ -127,8 +191,27 @@ void Compositor<T>::span(int y, int x0, int x1, float coverage) {
     }
     return;
   }
+  if (full && !s.shader.is_constant() &&
+      (s.op == CompositeOp::Copy || (s.op == CompositeOp::SourceOver && s.shader.is_opaque()))) {
+    s.shader.shade(y, x0, n, dst);  // opaque paint that replaces the destination: shaded straight into it
+    return;
+  }
   const T* src = s.shade(y, x0, n);
   s.run(dst, src, s.shader.is_constant() ? 0 : 4, nullptr, coverage * s.alpha, nullptr, n);
+}
+
+template <class T>
+void Compositor<T>::span(int y, int x0, int x1, float coverage, const float* clip) {
+  if (clip == nullptr) {
+    span(y, x0, x1, coverage);
+    return;
+  }
+  State& s = *state_;
+  int skip = 0;
+  if (s.nothing || !s.clip_to_view(y, x0, x1, skip)) return;
+  const int n = x1 - x0;
+  const T* src = s.shade(y, x0, n);
+  s.run(s.view.pixel(x0, y), src, s.shader.is_constant() ? 0 : 4, nullptr, coverage * s.alpha, clip + skip, n);
 }
 
 template <class T>

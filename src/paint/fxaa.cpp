@@ -199,4 +199,29 @@ void fxaa(std::span<float> plane, int width, int height, const FxaaOptions& opti
   });
 }
 
+bool parse_anti_alias_method(std::string_view name, AntiAliasMethod& out) {
+  if (name == "fxaa") {
+    out = {AntiAlias::None, true};
+    return true;
+  }
+  AntiAlias aa;
+  if (!parse_anti_alias(name, aa)) return false;
+  out = {aa, false};
+  return true;
+}
+
+std::string_view to_string(const AntiAliasMethod& method) {
+  return method.fxaa ? std::string_view("fxaa") : to_string(method.coverage);
+}
+
+void post_filter(const AntiAliasMethod& method, Image& image) {
+  if (method.fxaa) fxaa(image);
+}
+void post_filter(const AntiAliasMethod& method, Image16& image) {
+  if (method.fxaa) fxaa(image);
+}
+void post_filter(const AntiAliasMethod& method, std::span<float> plane, int width, int height) {
+  if (method.fxaa) fxaa(plane, width, height);
+}
+
 }  // namespace vraster

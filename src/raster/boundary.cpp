@@ -264,7 +264,8 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
     y_lo = std::min(y_lo, e.y0);
     y_hi = std::max(y_hi, e.y1);
   }
-  bucketed_ = n >= kMinBucketedEdges && y_hi - y_lo < (1 << 20);
+  // (and lie where row numbers fit 64 bits: unclipped NonExterior edges may reach 1e300)
+  bucketed_ = n >= kMinBucketedEdges && y_hi - y_lo < (1 << 20) && y_lo > -0x1p52 && y_hi < 0x1p52;
   if (bucketed_) {
     row_base_ = static_cast<std::int64_t>(std::floor(y_lo));
     const auto rows = static_cast<std::size_t>(static_cast<std::int64_t>(std::floor(y_hi)) - row_base_ + 2);
@@ -401,7 +402,8 @@ void BoundarySweep::run(const std::vector<Edge>& edges, const std::vector<Edge>&
 
   // Row output: before the sweep passes the bottom of the current pixel row, the boundary edges hand over their
   // pieces down to it and the row is resolved.
-  std::int64_t row = n > 0 ? static_cast<std::int64_t>(std::floor(edges[starts_[0]].y0)) : 0;
+  // (Only row output counts rows; its edges are clipped to the image. Unclipped edges may lie beyond 64 bits.)
+  std::int64_t row = Out::kRows && n > 0 ? static_cast<std::int64_t>(std::floor(edges[starts_[0]].y0)) : 0;
   // Returns true when it scheduled crossings (back to events), which the caller must look at before anything at y.
   auto finish_rows_above = [&](double y) {
     bool scheduled = false;

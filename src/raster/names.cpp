@@ -16,7 +16,7 @@ constexpr std::array<std::pair<std::string_view, FillRule>, 6> kRules{{
     {"abs-geq-2", FillRule::AbsGeq2},
 }};
 
-constexpr std::array<std::pair<std::string_view, AntiAlias>, 11> kModes{{
+constexpr std::array<std::pair<std::string_view, AntiAlias>, 10> kModes{{
     {"none", AntiAlias::None},
     {"analytic", AntiAlias::Analytic},
     {"exact", AntiAlias::Exact},
@@ -27,7 +27,6 @@ constexpr std::array<std::pair<std::string_view, AntiAlias>, 11> kModes{{
     {"msaa-4", AntiAlias::Msaa4},
     {"msaa-8", AntiAlias::Msaa8},
     {"msaa-16", AntiAlias::Msaa16},
-    {"fxaa", AntiAlias::Fxaa},
 }};
 
 }  // namespace

@@ -277,7 +277,7 @@ void detail::RasterizerImpl::fill(const Polylines& lines, FillRule rule, AntiAli
   if (edges_.empty()) return;
   if (const detail::SamplePattern pattern = detail::sample_pattern(aa); pattern.grid > 0) {
     detail::sweep_sampled(edges_, y_min_, y_max_, rule, pattern, width, sink);  // ssaa-N, msaa-N: supersample.cpp
-  } else if (aa == AntiAlias::None || aa == AntiAlias::Fxaa) {  // fxaa: the caller post-filters the image
+  } else if (aa == AntiAlias::None) {
     sweep_aliased(rule, width, sink);
   } else {
     sweep_analytic(rule, width, sink);

@@ -1,12 +1,12 @@
-// Hairlines (1-device-pixel lines: Bresenham, DDA, Wu, analytic) and the stroke entry point.
+// Hairlines (1-device-pixel lines: Bresenham, DDA, Wu, analytic) and the stroke entry point, as coverage.
 //
-//   stroke_path: width in device pixels >= 1 -> stroke_to_path (user space) -> transform -> non-zero fill;
-//                thinner -> dashes in user space -> hairlines with alpha scaled by the width (never vanishes).
+//   Renderer::stroke: width in device pixels >= 1 -> stroke_to_path (user space) -> Renderer::fill (non-zero);
+//                     thinner -> dashes in user space -> Renderer::hairlines with coverage scaled by the width.
+//   Either way the coverage goes to the caller's sink (a compositor): strokes are geometry, never pixels here.
 #include <algorithm>
 #include <climits>
 #include <cmath>
 #include <optional>
-#include <type_traits>
 
 #include "stroke/internal.hpp"
 #include "vraster/lines.hpp"
@@ -199,56 +199,52 @@ Path thin_centre_lines(const Path& path, const StrokeStyle& style, double user_t
 
 }  // namespace
 
-template <class T>
-void stroke_path(BasicImage<T>& image, const Path& path, const Affine& transform, const StrokeStyle& style,
-                 Color color, const StrokeRenderOptions& options) {
-  if (!(style.width > 0) || !std::isfinite(style.width) || !(color.a > 0) || path.empty()) return;
-  if (!transform.is_finite()) return;
+HairlineMode thin_stroke_mode(AntiAlias aa, HairlineMode requested) {
+  if (aa == AntiAlias::None) return requested == HairlineMode::Dda ? HairlineMode::Dda : HairlineMode::Bresenham;
+  if (requested == HairlineMode::Bresenham || requested == HairlineMode::Dda) return HairlineMode::Analytic;
+  return requested;
+}
+
+void Renderer::stroke(const Path& path, const Affine& transform, const StrokeStyle& style,
+                      const StrokeRenderOptions& options, int width, int height, CoverageSink& sink) {
+  if (!(style.width > 0) || !std::isfinite(style.width) || path.empty() || !transform.is_finite()) return;
+  if (width <= 0 || height <= 0) return;
   const double tolerance = options.tolerance > 0 && std::isfinite(options.tolerance) ? options.tolerance : kDefaultTolerance;
   const double device_width = style.width * std::sqrt(std::fabs(transform.determinant()));
   const double user_tol = user_tolerance(transform, tolerance);
-  Renderer local;
-  Renderer& renderer = options.renderer ? *options.renderer : local;
   if (device_width < 1) {
-    // Thin: dashes in user space, then hairlines in device space with alpha scaled by the width.
+    // The one place thin strokes are decided: dashes in user space, then 1-px hairlines in device space with
+    // coverage scaled by the device width, so a stroke never vanishes (and never paints more than its area).
     const Path centre_lines = thin_centre_lines(path, style, user_tol);
-    HairlineMode mode = options.thin_mode;
-    if (options.aa == AntiAlias::None || options.aa == AntiAlias::Fxaa) {  // fxaa: aliased, filtered afterwards
-      if (mode != HairlineMode::Dda) mode = HairlineMode::Bresenham;
-    } else if (mode == HairlineMode::Bresenham || mode == HairlineMode::Dda) {
-      mode = HairlineMode::Analytic;
-    }
-    if constexpr (std::is_same_v<T, std::uint8_t>) {
-      SolidCompositor<std::uint8_t> compositor(image, color);
-      renderer.hairlines(centre_lines, transform, mode, image.width, image.height, compositor,
-                         static_cast<float>(device_width));
-    } else {
-      // Deeper images: the analytic 1-px stroke (the per-pixel algorithms write 8-bit pixels).
-      std::vector<StrokePolyline> pieces;
-      const Path device = centre_lines.transformed(transform);
-      const Rect clip{-2, -2, image.width + 2.0, image.height + 2.0};
-      flatten_for_stroke_clipped(device, kHairlineTolerance, clip, pieces);
-      StrokeStyle one;
-      one.width = 1;
-      one.join = LineJoin::Bevel;
-      Path outline;
-      stroke_polylines(pieces, one, kHairlineTolerance, outline);
-      renderer.fill(image, outline, Affine{}, color.with_alpha(static_cast<float>(device_width)),
-                    FillOptions{FillRule::NonZero, options.aa, kHairlineTolerance});
-    }
+    hairlines(centre_lines, transform, thin_stroke_mode(options.aa, options.thin_mode), width, height, sink,
+              static_cast<float>(device_width));
     return;
   }
-  // The user-space box of the image (plus a pixel): only geometry within the stroke's reach of it is outlined.
+  // Geometry only: the outline in user space, then the ordinary fill path (non-zero).
+  // The user-space box of the device area (plus a pixel): only geometry within the stroke's reach of it is
+  // outlined, so a huge stroke far outside costs nothing.
   std::optional<Rect> visible;
   if (transform.invertible()) {
     const Affine inverse = transform.inverse();
-    const double w = image.width + 1.0, h = image.height + 1.0;
+    const double w = width + 1.0, h = height + 1.0;
     Rect box = Rect::from_point(inverse.apply({-1, -1}));
     for (const Point corner : {Point{w, -1}, Point{-1, h}, Point{w, h}}) box.include(inverse.apply(corner));
     if (is_finite(Point{box.x0, box.y0}) && is_finite(Point{box.x1, box.y1})) visible = box;
   }
   const Path outline = stroke_to_path_visible(path, style, user_tol, visible ? &*visible : nullptr);
-  renderer.fill(image, outline, transform, color, FillOptions{FillRule::NonZero, options.aa, tolerance});
+  fill(outline, transform, FillOptions{FillRule::NonZero, options.aa, tolerance}, width, height, sink);
+}
+
+template <class T>
+void stroke_path(BasicImage<T>& image, const Path& path, const Affine& transform, const StrokeStyle& style,
+                 Color color, const StrokeRenderOptions& options) {
+  if (!(color.a > 0)) return;
+  SolidCompositor<T> compositor(image, color);
+  if (options.renderer) {
+    options.renderer->stroke(path, transform, style, options, image.width, image.height, compositor);
+  } else {
+    Renderer().stroke(path, transform, style, options, image.width, image.height, compositor);
+  }
 }
 
 template void stroke_path(Image&, const Path&, const Affine&, const StrokeStyle&, Color, const StrokeRenderOptions&);

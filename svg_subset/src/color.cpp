@@ -1,6 +1,8 @@
-// svg_subset: colour values (#rgb, #rrggbb, rgb(), the 147 CSS/SVG colour keywords, none).
+// svg_subset: colour values (#rgb, #rgba, #rrggbb, #rrggbbaa, rgb(), rgba(), hsl(), hsla(), the 147 CSS/SVG
+// colour keywords, transparent, none).
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -132,6 +134,53 @@ std::optional<Color> parse_rgb_function(std::string_view args) {
   return Color{channel[0], channel[1], channel[2], channel[3]};
 }
 
+/// One channel of an HSL colour (CSS Color 3, section 4.2.4): m1, m2 from lightness and saturation, h in turns.
+float hue_to_channel(double m1, double m2, double h) {
+  h -= std::floor(h);
+  double v = m1;
+  if (h * 6 < 1)
+    v = m1 + (m2 - m1) * h * 6;
+  else if (h * 2 < 1)
+    v = m2;
+  else if (h * 3 < 2)
+    v = m1 + (m2 - m1) * (2.0 / 3 - h) * 6;
+  return static_cast<float>(v);
+}
+
+/// hsl(h, s%, l%) / hsla(h, s%, l%, a): hue in degrees (any value, wrapped; "deg" allowed), saturation and
+/// lightness as percentages (or plain numbers, CSS 4) clamped to 0..100%, alpha as 0..1 or a percentage.
+std::optional<Color> parse_hsl_function(std::string_view args) {
+  double v[4] = {0, 0, 0, 1};
+  std::size_t pos = 0;
+  int count = 0;
+  detail::skip_wsp(args, pos);
+  while (pos < args.size() && count < 4) {
+    if (count > 0) {
+      const bool comma = detail::skip_comma_wsp(args, pos);
+      if (!comma && count == 3 && pos < args.size() && args[pos] == '/') {
+        ++pos;
+        detail::skip_wsp(args, pos);
+      }
+    }
+    double x = 0;
+    if (detail::scan_number(args, pos, x) != NumberScan::Ok) return std::nullopt;
+    if (count == 0 && args.substr(pos, 3) == "deg") pos += 3;
+    const bool percent = pos < args.size() && args[pos] == '%';
+    if (percent) ++pos;
+    if (count == 1 || count == 2) x = std::clamp(x / 100, 0.0, 1.0);
+    if (count == 3) x = std::clamp(percent ? x / 100 : x, 0.0, 1.0);
+    if (!std::isfinite(x)) return std::nullopt;
+    v[count++] = x;
+    detail::skip_wsp(args, pos);
+  }
+  if (pos != args.size() || count < 3) return std::nullopt;
+  const double h = v[0] / 360, sat = v[1], light = v[2];
+  const double m2 = light <= 0.5 ? light * (sat + 1) : light + sat - light * sat;
+  const double m1 = light * 2 - m2;
+  return Color{hue_to_channel(m1, m2, h + 1.0 / 3), hue_to_channel(m1, m2, h), hue_to_channel(m1, m2, h - 1.0 / 3),
+               static_cast<float>(v[3])};
+}
+
 }  // namespace
 
 std::optional<Color> parse_color(std::string_view text, bool& is_none) {
@@ -150,6 +199,15 @@ std::optional<Color> parse_color(std::string_view text, bool& is_none) {
       detail::skip_wsp(s, pos);  // CSS forbids space before '(' but old SVG files have it; harmless
       if (pos < s.size() && s[pos] == '(' && s.back() == ')') {
         return parse_rgb_function(s.substr(pos + 1, s.size() - pos - 2));
+      }
+    }
+  }
+  for (std::string_view fn : {std::string_view("hsl"), std::string_view("hsla")}) {
+    if (detail::istarts_with(s, fn)) {
+      std::size_t pos = fn.size();
+      detail::skip_wsp(s, pos);
+      if (pos < s.size() && s[pos] == '(' && s.back() == ')') {
+        return parse_hsl_function(s.substr(pos + 1, s.size() - pos - 2));
       }
     }
   }

@@ -14,11 +14,17 @@
 #include <pugixml.hpp>
 #include <string>
 #include <utility>
+#include <tuple>
+#include <unordered_map>
+#include <unordered_set>
+#include <variant>
 #include <vector>
 
 #include "scan.hpp"
 #include "xml_check.hpp"
+#include "css.hpp"
 #include "svg_subset/svg.hpp"
+#include "svg_subset/tree.hpp"
 #include "vraster/files.hpp"
 
 namespace vraster::svg {
@@ -62,69 +68,69 @@ class LineIndex {
  private:
   std::vector<std::size_t> starts_;
 };
-
-enum class PaintKind : std::uint8_t { None, Solid, CurrentColor };
-
-struct Paint {
-  PaintKind kind = PaintKind::Solid;
+/// A paint as declared: the resolution of url() and currentColor waits for the element that uses it.
+struct DeclaredPaint {
+  enum class Kind : std::uint8_t { None, Color, CurrentColor, Url, ContextFill, ContextStroke };
+  Kind kind = Kind::Color;
   Color color{0, 0, 0, 1};
+  std::string url;                     ///< the id referred to (without '#')
+  std::optional<DeclaredPaint::Kind> fallback_kind;  ///< after url(): none, a colour or currentColor
+  std::size_t offset = 0;
 };
 
-/// The properties in effect on an element.
+/// The properties in effect on an element (inherited ones come from the parent; the others are reset).
 struct Style {
   // Inherited.
-  Paint fill;
+  DeclaredPaint fill;
   float fill_opacity = 1;
   FillRule fill_rule = FillRule::NonZero;
-  Paint stroke{PaintKind::None, {}};
+  DeclaredPaint stroke{DeclaredPaint::Kind::None, {}, {}, {}, 0};
   float stroke_opacity = 1;
   StrokeStyle stroke_style;  // SVG defaults: width 1, butt, miter, miter limit 4, no dashes
   Color current_color{0, 0, 0, 1};  // the `color` property, used by currentColor
   bool visible = true;
-  // Not inherited in SVG; the product down the tree approximates group opacity.
+  FillRule clip_rule = FillRule::NonZero;
+  bool stroke_first = false;
+  bool crisp_edges = false;
+  // Not inherited.
   float opacity = 1;
+  bool displayed = true;
+  std::string clip_path, mask;  // ids from url(#id)
+  std::string blend_mode = "normal";
+  bool isolate = false;
+  Color stop_color{0, 0, 0, 1};
+  float stop_opacity = 1;
+  bool overflow_visible = false;
+
+  /// The style a child starts from: inherited properties kept, the others at their initial values.
+  Style inherited() const {
+    Style s = *this;
+    s.opacity = 1;
+    s.displayed = true;
+    s.clip_path.clear();
+    s.mask.clear();
+    s.blend_mode = "normal";
+    s.isolate = false;
+    s.stop_color = Color{0, 0, 0, 1};
+    s.stop_opacity = 1;
+    s.overflow_visible = false;
+    return s;
+  }
 };
 
-enum class Property {
-  Unknown,
-  Fill,
-  FillOpacity,
-  FillRule,
-  Stroke,
-  StrokeOpacity,
-  StrokeWidth,
-  StrokeLinecap,
-  StrokeLinejoin,
-  StrokeMiterlimit,
-  StrokeDasharray,
-  StrokeDashoffset,
-  Opacity,
-  Color,
-  Display,
-  Visibility,
-  Unsupported
-};
+/// The presentation attributes and CSS properties we know. Everything else is ignored silently (SVG has many
+/// properties that do not change what is drawn here; unknown names are not errors in CSS either).
+constexpr std::string_view kProperties[] = {
+    "fill",           "fill-opacity",     "fill-rule",         "stroke",         "stroke-opacity",
+    "stroke-width",   "stroke-linecap",   "stroke-linejoin",   "stroke-miterlimit", "stroke-dasharray",
+    "stroke-dashoffset", "opacity",       "color",             "display",        "visibility",
+    "clip-path",      "clip-rule",        "mask",              "filter",         "mix-blend-mode",
+    "isolation",      "stop-color",       "stop-opacity",      "paint-order",    "shape-rendering",
+    "overflow",       "marker-start",     "marker-mid",        "marker-end",     "marker",
+    "transform"};
 
-Property property_of(std::string_view name, bool css) {
-  // Presentation attributes are case-sensitive XML names; CSS property names are not.
-  auto is = [&](std::string_view p) { return css ? iequals(name, p) : name == p; };
-  if (is("fill")) return Property::Fill;
-  if (is("fill-opacity")) return Property::FillOpacity;
-  if (is("fill-rule")) return Property::FillRule;
-  if (is("stroke")) return Property::Stroke;
-  if (is("stroke-opacity")) return Property::StrokeOpacity;
-  if (is("stroke-width")) return Property::StrokeWidth;
-  if (is("stroke-linecap")) return Property::StrokeLinecap;
-  if (is("stroke-linejoin")) return Property::StrokeLinejoin;
-  if (is("stroke-miterlimit")) return Property::StrokeMiterlimit;
-  if (is("stroke-dasharray")) return Property::StrokeDasharray;
-  if (is("stroke-dashoffset")) return Property::StrokeDashoffset;
-  if (is("opacity")) return Property::Opacity;
-  if (is("color")) return Property::Color;
-  if (is("display")) return Property::Display;
-  if (is("visibility")) return Property::Visibility;
-  if (is("clip-path") || is("mask") || is("filter")) return Property::Unsupported;
-  return Property::Unknown;
+bool is_property(std::string_view name) {
+  return std::find(std::begin(kProperties), std::end(kProperties), name) != std::end(kProperties);
 }
 
 enum class Axis { X, Y, Other };
@@ -133,33 +139,70 @@ struct ViewBox {
   double x, y, width, height;
 };
 
+/// Adapter for css::matches_path on pugixml nodes.
+struct XmlAdapter {
+  static std::string_view name(pugi::xml_node n) {
+    const std::string_view full = n.name();
+    const std::size_t colon = full.find(':');
+    return colon == std::string_view::npos ? full : full.substr(colon + 1);
+  }
+  static bool attribute(pugi::xml_node n, std::string_view name, std::string_view& value) {
+    for (const pugi::xml_attribute a : n.attributes()) {
+      if (name == a.name()) {
+        value = a.value();
+        return true;
+      }
+    }
+    return false;
+  }
+  static pugi::xml_node previous_element(pugi::xml_node n) {
+    for (pugi::xml_node p = n.previous_sibling(); p; p = p.previous_sibling()) {
+      if (p.type() == pugi::node_element) return p;
+    }
+    return {};
+  }
+  static bool is_null(pugi::xml_node n) { return !n; }
+};
+
+constexpr std::string_view kSvgNamespace = "http://www.w3.org/2000/svg";
+constexpr std::size_t kMaxUseInstances = 100'000;
+constexpr int kMaxReferenceDepth = 64;
+
 class Builder {
  public:
   Builder(std::string_view text, const std::string& file) : text_(text), file_(file), lines_(text) {}
 
-  Document run() {
+  Tree run() {
     buffer_.assign(text_.begin(), text_.end());
-    pugi::xml_document xml;
     const pugi::xml_parse_result result =
-        xml.load_buffer_inplace(buffer_.data(), buffer_.size(), pugi::parse_default, pugi::encoding_utf8);
+        xml_.load_buffer_inplace(buffer_.data(), buffer_.size(), pugi::parse_default, pugi::encoding_utf8);
     if (!result) {
       const auto offset = static_cast<std::size_t>(std::max<std::ptrdiff_t>(result.offset, 0));
       fail(std::min(offset, text_.size()), std::string("malformed XML: ") + result.description());
     }
     if (const std::optional<detail::XmlProblem> problem = detail::find_xml_problem(text_))
       fail(problem->offset, "malformed XML: " + problem->message);
-    check_unique_attributes(xml);
-    const pugi::xml_node root = xml.document_element();
-    if (std::string_view(root.name()) != "svg") {
+    check_unique_attributes(xml_);
+    const pugi::xml_node root = xml_.document_element();
+    index_document(root);
+    if (local_name(root) != "svg") {
       fail(element_offset(root), "the root element is <" + printable(root.name()) + ">, expected <svg>");
     }
-    doc_.file = file_;
+    tree_.file = file_;
+    count_element(element_offset(root), 1);
     set_up_viewport(root);
-    element(root, Style{}, Affine{}, 1);
+    Style style = computed(root, Style{});
+    tree_.root.id = root.attribute("id").value();
+    tree_.root.transform = root_transform(root);
+    if (style.displayed) {
+      children(root, style, tree_.root.children, 1);
+      apply_group_effects(style, tree_.root);
+    }
     finish_warnings();
-    return std::move(doc_);
+    return std::move(tree_);
   }
 
+ private:
  private:
   /// XML: an attribute name appears at most once in a start tag. Checks every element, drawn or not, walking
   /// the tree without recursion; names are sorted when an element has many, so the cost stays n log n.
@@ -207,7 +250,7 @@ class Builder {
       return;
     }
     const auto [line, column] = lines_.position(offset);
-    doc_.warnings.push_back(std::to_string(line) + ":" + std::to_string(column) + ": " + message);
+    tree_.warnings.push_back(std::to_string(line) + ":" + std::to_string(column) + ": " + message);
   }
 
   /// Appends one line per kind of warning that was cut short: "... and K more (kind), the first at L:C".
@@ -215,7 +258,7 @@ class Builder {
     for (const WarningCount& c : warning_counts_) {
       if (c.count <= kMaxWarningsPerKind) continue;
       const auto [line, column] = lines_.position(c.first_dropped);
-      doc_.warnings.push_back(std::to_string(line) + ":" + std::to_string(column) + ": ... and " +
+      tree_.warnings.push_back(std::to_string(line) + ":" + std::to_string(column) + ": ... and " +
                               std::to_string(c.count - kMaxWarningsPerKind) + " more warnings about " +
                               std::string(c.kind) + " (not shown)");
     }
@@ -291,7 +334,81 @@ class Builder {
     return ref.size();  // unknown entities are kept as written
   }
 
-  // ---- values ----
+
+  // ---- the document index: ids, style sheets, namespace prefixes ----
+
+  /// One pass over every element: the id map (first one wins, as getElementById), the <style> sheets in
+  /// document order, and the prefixes bound to the SVG namespace (xmlns:svg="...").
+  void index_document(pugi::xml_node root) {
+    std::vector<pugi::xml_node> styles;
+    pugi::xml_node node = root;
+    while (node) {
+      if (node.type() == pugi::node_element) {
+        for (const pugi::xml_attribute a : node.attributes()) {
+          const std::string_view name = a.name();
+          if (name.substr(0, 6) == "xmlns:" && a.value() == kSvgNamespace) svg_prefixes_.emplace_back(name.substr(6));
+        }
+        if (const pugi::xml_attribute id = node.attribute("id")) ids_.emplace(std::string_view(id.value()), node);
+        if (std::string_view(node.name()) == "style" || std::string_view(node.name()).ends_with(":style"))
+          styles.push_back(node);
+      }
+      if (node.first_child()) {
+        node = node.first_child();
+        continue;
+      }
+      while (node && node != root && !node.next_sibling()) node = node.parent();
+      if (!node || node == root) break;
+      node = node.next_sibling();
+    }
+    for (const pugi::xml_node style : styles) {
+      if (local_name(style) != "style") continue;
+      const std::string_view type = trim(style.attribute("type").value());
+      if (!type.empty() && !iequals(type, "text/css")) continue;
+      for (const pugi::xml_node child : style.children()) {
+        if (child.type() != pugi::node_pcdata && child.type() != pugi::node_cdata) continue;
+        const std::string_view css = child.value();
+        const std::size_t base = offset_of(child.value());
+        for (const std::size_t bad : sheet_.add(css, base)) {
+          warn("style rules", bad, "style rule with an unsupported selector, ignored");
+        }
+      }
+    }
+  }
+
+  /// The element's local name when it is in the SVG namespace (no prefix, or a prefix bound to it); empty for
+  /// elements of other namespaces (Inkscape's sodipodi:, inkscape:, RDF), which are skipped silently.
+  std::string_view local_name(pugi::xml_node node) const {
+    const std::string_view full = node.name();
+    const std::size_t colon = full.find(':');
+    if (colon == std::string_view::npos) return full;
+    const std::string_view prefix = full.substr(0, colon);
+    if (std::find(svg_prefixes_.begin(), svg_prefixes_.end(), prefix) != svg_prefixes_.end())
+      return full.substr(colon + 1);
+    return {};
+  }
+
+  /// The element an href (or xlink:href) points to in this document, or a null node (warns when it is not a
+  /// same-document reference or the id does not exist).
+  pugi::xml_node href_target(pugi::xml_node node, bool warn_missing = true) {
+    pugi::xml_attribute attr = node.attribute("href");
+    if (!attr) attr = node.attribute("xlink:href");
+    if (!attr) return {};
+    const std::string_view v = trim(attr.value());
+    if (v.empty() || v[0] != '#') {
+      if (warn_missing) warn("references", value_offset(attr), "only same-document references (#id) are supported: " + quoted(v));
+      return {};
+    }
+    const pugi::xml_node target = by_id(v.substr(1));
+    if (!target && warn_missing) warn("references", value_offset(attr), "no element with id " + quoted(v.substr(1)));
+    return target;
+  }
+
+  pugi::xml_node by_id(std::string_view id) const {
+    const auto it = ids_.find(id);
+    return it == ids_.end() ? pugi::xml_node{} : it->second;
+  }
+
+  // ---- values (an invalid value is reported and treated as not given: nothing is returned) ----
 
   bool parse_length(std::string_view v, Axis axis, double& out) const {
     std::size_t pos = 0;
@@ -317,245 +434,327 @@ class Builder {
     return std::isfinite(out);
   }
 
-  /// A length attribute, or nothing when absent; throws when malformed.
-  std::optional<double> length_attribute(pugi::xml_node node, const char* name, Axis axis) const {
+  /// A length attribute, or nothing when absent or invalid (with a warning).
+  std::optional<double> length_attribute(pugi::xml_node node, const char* name, Axis axis) {
     const pugi::xml_attribute attr = node.attribute(name);
     if (!attr) return std::nullopt;
     const std::string_view raw = attr.value();
     const std::string_view v = trim(raw);
     double out = 0;
     if (!parse_length(v, axis, out)) {
-      fail(value_offset(attr, static_cast<std::size_t>(v.data() - raw.data())),
-           std::string("invalid length for ") + name + ": " + quoted(v));
+      warn("invalid values", value_offset(attr, static_cast<std::size_t>(v.data() - raw.data())),
+           std::string("invalid length for ") + name + ": " + quoted(v) + ", ignored");
+      return std::nullopt;
     }
     return out;
   }
 
-  float parse_opacity(std::string_view v, std::size_t offset, std::string_view property) const {
+  /// A number or a percentage (a fraction), as gradient and stop attributes take them.
+  static std::optional<double> number_or_percent(std::string_view v) {
     std::size_t pos = 0;
     double value = 0;
-    if (scan_number(v, pos, value) == NumberScan::Ok) {
-      if (pos < v.size() && v[pos] == '%') {
-        value /= 100;
-        ++pos;
-      }
-      if (pos == v.size()) return static_cast<float>(std::clamp(value, 0.0, 1.0));
+    if (scan_number(trim(v), pos, value) != NumberScan::Ok) return std::nullopt;
+    const std::string_view t = trim(v);
+    if (pos < t.size() && t[pos] == '%') {
+      value /= 100;
+      ++pos;
     }
-    fail(offset, "invalid " + std::string(property) + " " + quoted(v) + " (expected a number from 0 to 1)");
+    if (pos != t.size() || !std::isfinite(value)) return std::nullopt;
+    return value;
   }
 
-  Paint parse_paint(std::string_view v, std::size_t offset, std::string_view property) {
-    if (iequals(v, "currentColor")) return Paint{PaintKind::CurrentColor, {}};
+  static std::optional<float> parse_opacity(std::string_view v) {
+    const std::optional<double> value = number_or_percent(v);
+    if (!value) return std::nullopt;
+    return static_cast<float>(std::clamp(*value, 0.0, 1.0));
+  }
+
+  static std::optional<DeclaredPaint> parse_paint(std::string_view v, std::size_t offset) {
+    DeclaredPaint paint;
+    paint.offset = offset;
+    if (iequals(v, "currentColor")) {
+      paint.kind = DeclaredPaint::Kind::CurrentColor;
+      return paint;
+    }
+    if (v == "context-fill" || v == "context-stroke") {
+      paint.kind = v == "context-fill" ? DeclaredPaint::Kind::ContextFill : DeclaredPaint::Kind::ContextStroke;
+      return paint;
+    }
     if (detail::istarts_with(v, "url(")) {
-      // Gradients and patterns: SVG allows a fallback colour after the reference, which is what we can draw.
       const std::size_t close = v.find(')');
-      if (close == std::string_view::npos) fail(offset, "invalid " + std::string(property) + ": unterminated url(");
+      if (close == std::string_view::npos) return std::nullopt;
+      std::string_view ref = trim(v.substr(4, close - 4));
+      if (ref.size() >= 2 && (ref.front() == '"' || ref.front() == '\'') && ref.back() == ref.front())
+        ref = ref.substr(1, ref.size() - 2);
+      paint.kind = DeclaredPaint::Kind::Url;
+      paint.url = std::string(!ref.empty() && ref[0] == '#' ? ref.substr(1) : ref);
       const std::string_view fallback = trim(v.substr(close + 1));
-      if (fallback.empty()) {
-        warn("paint servers", offset, "paint servers (" + printable(v.substr(0, close + 1)) + ") are not supported yet; " +
-                         std::string(property) + " treated as none");
-        return Paint{PaintKind::None, {}};
+      if (!fallback.empty()) {
+        const std::optional<DeclaredPaint> f = parse_paint(fallback, offset);
+        if (!f || f->kind == DeclaredPaint::Kind::Url) return std::nullopt;
+        paint.fallback_kind = f->kind;
+        paint.color = f->color;
       }
-      warn("paint servers", offset, "paint servers are not supported yet; using the fallback colour " + quoted(fallback));
-      return parse_paint(fallback, offset + static_cast<std::size_t>(fallback.data() - v.data()), property);
+      return paint;
     }
     bool none = false;
     const std::optional<Color> color = parse_color(v, none);
-    if (none) return Paint{PaintKind::None, {}};
-    if (!color) fail(offset, "invalid colour for " + std::string(property) + ": " + quoted(v));
-    return Paint{PaintKind::Solid, *color};
+    if (none) {
+      paint.kind = DeclaredPaint::Kind::None;
+      return paint;
+    }
+    if (!color) return std::nullopt;
+    paint.color = *color;
+    return paint;
   }
 
-  /// A length property value (units and percentages as for attributes; percentages of the normalized diagonal).
-  double length_property(std::string_view v, std::size_t offset, std::string_view property) const {
-    double out = 0;
-    if (!parse_length(v, Axis::Other, out)) fail(offset, "invalid length for " + std::string(property) + ": " + quoted(v));
-    return out;
-  }
-
-  /// stroke-dasharray: "none" or lengths separated by commas and/or whitespace. SVG: a negative value makes the
-  /// list invalid, which draws a solid stroke (warning). Odd counts and all-zero lists are the stroker's business.
-  std::vector<double> parse_dash_array(std::string_view v, std::size_t offset) {
-    if (v == "none") return {};
+  /// stroke-dasharray: "none" or lengths separated by commas and/or whitespace; nothing when malformed.
+  /// SVG: a negative value makes the list invalid (drawn solid, with a warning).
+  std::optional<std::vector<double>> parse_dash_array(std::string_view v, std::size_t offset) {
+    if (v == "none") return std::vector<double>{};
     std::vector<double> dashes;
     std::size_t pos = 0;
-    if (v.empty()) fail(offset, "invalid stroke-dasharray '' (expected none or a list of lengths)");
+    if (v.empty()) return std::nullopt;
     while (pos < v.size()) {
       const std::size_t start = pos;
       while (pos < v.size() && !detail::is_wsp(v[pos]) && v[pos] != ',') ++pos;
       double length = 0;
-      if (pos == start || !parse_length(v.substr(start, pos - start), Axis::Other, length)) {
-        fail(offset + start, "invalid stroke-dasharray " + quoted(v) + " (expected none or a list of lengths)");
-      }
+      if (pos == start || !parse_length(v.substr(start, pos - start), Axis::Other, length)) return std::nullopt;
       dashes.push_back(length);
-      if (detail::skip_comma_wsp(v, pos) && pos == v.size())
-        fail(offset + pos, "invalid stroke-dasharray " + quoted(v) + ": expected a length after ','");
+      if (detail::skip_comma_wsp(v, pos) && pos == v.size()) return std::nullopt;
     }
     if (std::any_of(dashes.begin(), dashes.end(), [](double d) { return d < 0; })) {
       warn("dash patterns", offset, "negative value in stroke-dasharray " + quoted(v) + ", the stroke is drawn solid");
-      return {};
+      return std::vector<double>{};
     }
     return dashes;
   }
 
-  // ---- properties ----
-
-  /// Applies one declaration to `style`. Returns false for display:none.
-  bool apply(Property property, std::string_view name, std::string_view v, std::size_t offset, Style& style,
-             float& own_opacity) {
-    if (v == "inherit") return true;  // the inherited value is already in `style`
-    switch (property) {
-      case Property::Fill:
-        style.fill = parse_paint(v, offset, "fill");
-        break;
-      case Property::FillOpacity:
-        style.fill_opacity = parse_opacity(v, offset, "fill-opacity");
-        break;
-      case Property::FillRule:
-        if (v == "nonzero")
-          style.fill_rule = FillRule::NonZero;
-        else if (v == "evenodd")
-          style.fill_rule = FillRule::EvenOdd;
-        else
-          fail(offset, "invalid fill-rule " + quoted(v) + " (expected nonzero or evenodd)");
-        break;
-      case Property::Stroke:
-        style.stroke = parse_paint(v, offset, "stroke");
-        break;
-      case Property::StrokeOpacity:
-        style.stroke_opacity = parse_opacity(v, offset, "stroke-opacity");
-        break;
-      case Property::StrokeWidth: {
-        const double width = length_property(v, offset, "stroke-width");
-        if (width < 0)
-          warn("stroke widths", offset, "negative stroke-width " + quoted(v) + ", ignored");
-        else
-          style.stroke_style.width = width;
-        break;
-      }
-      case Property::StrokeLinecap:
-        if (!parse_line_cap(v, style.stroke_style.cap))
-          fail(offset, "invalid stroke-linecap " + quoted(v) + " (expected butt, round or square)");
-        break;
-      case Property::StrokeLinejoin:
-        if (v == "miter-clip" || v == "arcs") {
-          warn("line joins", offset, "stroke-linejoin " + quoted(v) + " is not supported yet, using miter");
-          style.stroke_style.join = LineJoin::Miter;
-        } else if (!parse_line_join(v, style.stroke_style.join)) {
-          fail(offset, "invalid stroke-linejoin " + quoted(v) + " (expected miter, round or bevel)");
-        }
-        break;
-      case Property::StrokeMiterlimit: {
-        std::size_t pos = 0;
-        double limit = 0;
-        if (scan_number(v, pos, limit) != NumberScan::Ok || pos != v.size())
-          fail(offset, "invalid stroke-miterlimit " + quoted(v) + " (expected a number)");
-        if (limit < 1)
-          warn("miter limits", offset, "stroke-miterlimit " + quoted(v) + " is below 1, ignored");
-        else
-          style.stroke_style.miter_limit = limit;
-        break;
-      }
-      case Property::StrokeDasharray:
-        style.stroke_style.dashes = parse_dash_array(v, offset);
-        break;
-      case Property::StrokeDashoffset:
-        style.stroke_style.dash_offset = length_property(v, offset, "stroke-dashoffset");
-        break;
-      case Property::Opacity:
-        own_opacity = parse_opacity(v, offset, "opacity");
-        break;
-      case Property::Color: {
-        if (iequals(v, "currentColor")) break;  // same as inherit
-        bool none = false;
-        const std::optional<Color> color = parse_color(v, none);
-        if (!color) fail(offset, "invalid colour for color: " + quoted(v));
-        style.current_color = *color;
-        break;
-      }
-      case Property::Display:
-        if (v == "none") return false;
-        break;
-      case Property::Visibility:
-        if (v == "visible")
-          style.visible = true;
-        else if (v == "hidden" || v == "collapse")
-          style.visible = false;
-        else
-          warn("visibility", offset, "unknown visibility " + quoted(v) + ", ignored");
-        break;
-      case Property::Unsupported:
-        if (v != "none" && std::find(warned_once_.begin(), warned_once_.end(), name) == warned_once_.end()) {
-          warned_once_.emplace_back(name);
-          warn("unsupported properties", offset, printable(name) + " is not supported yet, ignored (reported once)");
-        }
-        break;
-      case Property::Unknown:
-        break;
-    }
-    return true;
+  /// url(#id) of clip-path, mask, marker: the id, "" for none; nothing when malformed.
+  static std::optional<std::string> parse_url_reference(std::string_view v) {
+    if (v == "none") return std::string();
+    if (!detail::istarts_with(v, "url(") || v.back() != ')') return std::nullopt;
+    std::string_view ref = trim(v.substr(4, v.size() - 5));
+    if (ref.size() >= 2 && (ref.front() == '"' || ref.front() == '\'') && ref.back() == ref.front())
+      ref = ref.substr(1, ref.size() - 2);
+    if (ref.empty() || ref[0] != '#') return std::nullopt;
+    return std::string(ref.substr(1));
   }
 
-  /// Applies the presentation attributes, then the style attribute (which wins). Returns false for display:none.
-  bool apply_properties(pugi::xml_node node, Style& style, float& own_opacity) {
-    bool displayed = true;
+  // ---- the cascade ----
+
+  /// The computed style of `node` whose parent's computed style is `parent`: presentation attributes, then the
+  /// style sheets' rules, then the style attribute, in cascade order (css::sort_cascade), each applied over the
+  /// inherited values.
+  Style computed(pugi::xml_node node, const Style& parent) {
+    Style style = parent.inherited();
+    std::vector<css::Declaration> own;  // presentation attributes and the style attribute
+    std::vector<std::pair<css::Origin, std::size_t>> own_origin;
     for (const pugi::xml_attribute attr : node.attributes()) {
       const std::string_view name = attr.name();
-      const Property property = property_of(name, false);
-      if (property == Property::Unknown) continue;
+      if (!is_property(name) || name == "transform") continue;  // transform is an attribute here, not CSS
       const std::string_view raw = attr.value();
       const std::string_view v = trim(raw);
-      displayed &= apply(property, name, v, value_offset(attr, static_cast<std::size_t>(v.data() - raw.data())), style,
-                         own_opacity);
+      own.push_back(css::Declaration{std::string(name), std::string(v), false,
+                                     value_offset(attr, static_cast<std::size_t>(v.data() - raw.data()))});
+      own_origin.emplace_back(css::Origin::PresentationAttribute, own.size());
     }
-    const pugi::xml_attribute style_attr = node.attribute("style");
-    if (!style_attr) return displayed;
-    // "name: value; name: value" (CSS comments and escapes are not supported).
-    const std::string_view css = style_attr.value();
-    ValueOffsets offsets(*this, style_attr);
-    std::size_t pos = 0;
-    while (pos < css.size()) {
-      std::size_t end = css.find(';', pos);
-      if (end == std::string_view::npos) end = css.size();
-      const std::string_view declaration = css.substr(pos, end - pos);
-      const std::size_t colon = declaration.find(':');
-      if (colon == std::string_view::npos) {
-        if (!trim(declaration).empty()) {
-          warn("style declarations", offsets.at(pos), "malformed style declaration " + quoted(trim(declaration)) + ", ignored");
-        }
-      } else {
-        const std::string_view name = trim(declaration.substr(0, colon));
-        std::string_view v = trim(declaration.substr(colon + 1));
-        if (v.size() >= 10 && iequals(v.substr(v.size() - 10), "!important")) v = trim(v.substr(0, v.size() - 10));
-        const Property property = property_of(name, true);
-        if (property != Property::Unknown) {
-          displayed &=
-              apply(property, name, v, offsets.at(static_cast<std::size_t>(v.data() - css.data())), style, own_opacity);
+    if (const pugi::xml_attribute style_attr = node.attribute("style")) {
+      std::vector<std::size_t> bad;
+      std::vector<css::Declaration> declarations = css::parse_declarations(style_attr.value(), 0, &bad);
+      ValueOffsets offsets(*this, style_attr);
+      for (const std::size_t b : bad) warn("style declarations", offsets.at(b), "malformed style declaration, ignored");
+      offsets = ValueOffsets(*this, style_attr);
+      for (css::Declaration& d : declarations) {
+        d.offset = offsets.at(d.offset);
+        const css::Origin origin = d.important ? css::Origin::StyleImportant : css::Origin::StyleAttribute;
+        own.push_back(std::move(d));
+        own_origin.emplace_back(origin, own.size());
+      }
+    }
+    std::vector<css::Cascaded> cascade;
+    for (std::size_t i = 0; i < own.size(); ++i) {
+      cascade.push_back(css::Cascaded{&own[i], own_origin[i].first, 0, own_origin[i].second});
+    }
+    if (!sheet_.rules.empty()) {
+      path_.clear();
+      for (pugi::xml_node n = node; n && n.type() == pugi::node_element; n = n.parent()) path_.push_back(n);
+      std::reverse(path_.begin(), path_.end());
+      for (const css::Rule& rule : sheet_.rules) {
+        if (!css::matches_path<XmlAdapter>(rule.selector, path_)) continue;
+        for (const css::Declaration& d : rule.declarations) {
+          cascade.push_back(css::Cascaded{&d, d.important ? css::Origin::SheetImportant : css::Origin::Sheet,
+                                          rule.selector.specificity, rule.order});
         }
       }
-      pos = end + 1;
     }
-    return displayed;
+    css::sort_cascade(cascade);
+    for (const css::Cascaded& c : cascade) apply(c.declaration->name, c.declaration->value, c.declaration->offset, style, parent);
+    return style;
   }
 
-  // ---- the root viewport ----
+  void invalid(std::string_view name, std::string_view v, std::size_t offset) {
+    warn("invalid values", offset, "invalid " + printable(name) + " " + quoted(v) + ", ignored");
+  }
 
-  ViewBox parse_view_box(pugi::xml_attribute attr) const {
+  /// Applies one declaration. An invalid value is reported and changes nothing (CSS drops it).
+  void apply(std::string_view name, std::string_view v, std::size_t offset, Style& s, const Style& parent) {
+    if (v == "inherit") {
+      inherit(name, s, parent);
+      return;
+    }
+    if (v == "initial" || v == "unset") return;  // close enough: most SVG properties start at their initial values
+    auto bad = [&] { invalid(name, v, offset); };
+    if (name == "fill" || name == "stroke") {
+      const std::optional<DeclaredPaint> paint = parse_paint(v, offset);
+      if (!paint) return bad();
+      (name == "fill" ? s.fill : s.stroke) = *paint;
+    } else if (name == "fill-opacity" || name == "stroke-opacity" || name == "opacity" || name == "stop-opacity") {
+      const std::optional<float> o = parse_opacity(v);
+      if (!o) return bad();
+      (name == "fill-opacity" ? s.fill_opacity : name == "stroke-opacity" ? s.stroke_opacity
+                                                 : name == "opacity"      ? s.opacity
+                                                                          : s.stop_opacity) = *o;
+    } else if (name == "fill-rule" || name == "clip-rule") {
+      FillRule& rule = name == "fill-rule" ? s.fill_rule : s.clip_rule;
+      if (v == "nonzero")
+        rule = FillRule::NonZero;
+      else if (v == "evenodd")
+        rule = FillRule::EvenOdd;
+      else
+        bad();
+    } else if (name == "stroke-width") {
+      double width = 0;
+      if (!parse_length(v, Axis::Other, width) || width < 0) return bad();
+      s.stroke_style.width = width;
+    } else if (name == "stroke-linecap") {
+      if (!parse_line_cap(v, s.stroke_style.cap)) bad();
+    } else if (name == "stroke-linejoin") {
+      if (v == "miter-clip" || v == "arcs") {
+        warn("line joins", offset, "stroke-linejoin " + quoted(v) + " is not supported yet, using miter");
+        s.stroke_style.join = LineJoin::Miter;
+      } else if (!parse_line_join(v, s.stroke_style.join)) {
+        bad();
+      }
+    } else if (name == "stroke-miterlimit") {
+      std::size_t pos = 0;
+      double limit = 0;
+      if (scan_number(v, pos, limit) != NumberScan::Ok || pos != v.size() || limit < 1) return bad();
+      s.stroke_style.miter_limit = limit;
+    } else if (name == "stroke-dasharray") {
+      const auto dashes = parse_dash_array(v, offset);
+      if (!dashes) return bad();
+      s.stroke_style.dashes = *dashes;
+    } else if (name == "stroke-dashoffset") {
+      double d = 0;
+      if (!parse_length(v, Axis::Other, d)) return bad();
+      s.stroke_style.dash_offset = d;
+    } else if (name == "color") {
+      if (iequals(v, "currentColor")) return;  // same as inherit
+      bool none = false;
+      const std::optional<Color> color = parse_color(v, none);
+      if (!color) return bad();
+      s.current_color = *color;
+    } else if (name == "stop-color") {
+      if (iequals(v, "currentColor")) {
+        s.stop_color = s.current_color;
+        return;
+      }
+      bool none = false;
+      const std::optional<Color> color = parse_color(v, none);
+      if (!color) return bad();
+      s.stop_color = *color;
+    } else if (name == "display") {
+      s.displayed = v != "none";
+    } else if (name == "visibility") {
+      if (v == "visible")
+        s.visible = true;
+      else if (v == "hidden" || v == "collapse")
+        s.visible = false;
+      else
+        bad();
+    } else if (name == "clip-path" || name == "mask") {
+      const std::optional<std::string> id = parse_url_reference(v);
+      if (!id) return bad();
+      (name == "clip-path" ? s.clip_path : s.mask) = *id;
+    } else if (name == "mix-blend-mode") {
+      static constexpr std::string_view kModes[] = {
+          "normal",     "multiply",   "screen", "overlay",    "darken", "lighten", "color-dodge", "color-burn",
+          "hard-light", "soft-light", "difference", "exclusion", "hue", "saturation", "color", "luminosity"};
+      if (std::find(std::begin(kModes), std::end(kModes), v) == std::end(kModes)) return bad();
+      s.blend_mode = std::string(v);
+    } else if (name == "isolation") {
+      if (v != "auto" && v != "isolate") return bad();
+      s.isolate = v == "isolate";
+    } else if (name == "paint-order") {
+      // "normal", or fill/stroke/markers in some order: only whether stroke comes before fill matters here.
+      if (v == "normal") {
+        s.stroke_first = false;
+        return;
+      }
+      const std::size_t stroke = v.find("stroke"), fill = v.find("fill");
+      if (stroke == std::string_view::npos && fill == std::string_view::npos && v.find("markers") == std::string_view::npos)
+        return bad();
+      s.stroke_first = stroke != std::string_view::npos && (fill == std::string_view::npos || stroke < fill);
+    } else if (name == "shape-rendering") {
+      s.crisp_edges = v == "crispEdges" || v == "optimizeSpeed";
+    } else if (name == "overflow") {
+      s.overflow_visible = v == "visible" || v == "auto";
+    } else if (name == "filter") {
+      if (v != "none" && !warned_filter_) {
+        warned_filter_ = true;
+        warn("unsupported properties", offset, "filter is not supported yet, ignored (reported once)");
+      }
+    } else if (name.substr(0, 6) == "marker") {
+      if (v != "none" && !warned_marker_) {
+        warned_marker_ = true;
+        warn("unsupported properties", offset, "markers are not drawn yet, ignored (reported once)");
+      }
+    }
+  }
+
+  /// `inherit`: the parent's value of one property.
+  static void inherit(std::string_view name, Style& s, const Style& p) {
+    if (name == "fill") s.fill = p.fill;
+    else if (name == "stroke") s.stroke = p.stroke;
+    else if (name == "fill-opacity") s.fill_opacity = p.fill_opacity;
+    else if (name == "stroke-opacity") s.stroke_opacity = p.stroke_opacity;
+    else if (name == "opacity") s.opacity = p.opacity;
+    else if (name == "stop-opacity") s.stop_opacity = p.stop_opacity;
+    else if (name == "stop-color") s.stop_color = p.stop_color;
+    else if (name == "fill-rule") s.fill_rule = p.fill_rule;
+    else if (name == "clip-rule") s.clip_rule = p.clip_rule;
+    else if (name == "stroke-width") s.stroke_style.width = p.stroke_style.width;
+    else if (name == "stroke-linecap") s.stroke_style.cap = p.stroke_style.cap;
+    else if (name == "stroke-linejoin") s.stroke_style.join = p.stroke_style.join;
+    else if (name == "stroke-miterlimit") s.stroke_style.miter_limit = p.stroke_style.miter_limit;
+    else if (name == "stroke-dasharray") s.stroke_style.dashes = p.stroke_style.dashes;
+    else if (name == "stroke-dashoffset") s.stroke_style.dash_offset = p.stroke_style.dash_offset;
+    else if (name == "color") s.current_color = p.current_color;
+    else if (name == "visibility") s.visible = p.visible;
+    else if (name == "display") s.displayed = p.displayed;
+    else if (name == "clip-path") s.clip_path = p.clip_path;
+    else if (name == "mask") s.mask = p.mask;
+  }
+
+  // ---- viewports ----
+
+  std::optional<ViewBox> parse_view_box(pugi::xml_attribute attr) {
     const std::string_view s = attr.value();
     std::size_t pos = 0;
     double v[4];
     detail::skip_wsp(s, pos);
-    for (int i = 0; i < 4; ++i) {
+    bool ok = true;
+    for (int i = 0; i < 4 && ok; ++i) {
       if (i > 0) detail::skip_comma_wsp(s, pos);
-      if (scan_number(s, pos, v[i]) != NumberScan::Ok) {
-        fail(value_offset(attr, pos),
-             "invalid viewBox " + quoted(s) + " (expected four numbers: min-x min-y width height)");
-      }
+      ok = scan_number(s, pos, v[i]) == NumberScan::Ok;
     }
     detail::skip_wsp(s, pos);
-    if (pos != s.size())
-      fail(value_offset(attr, pos), "invalid viewBox " + quoted(s) + ": unexpected text after four numbers");
-    if (!(v[2] > 0 && v[3] > 0)) fail(value_offset(attr), "viewBox width and height must be positive, got " + quoted(s));
+    if (!ok || pos != s.size() || !(v[2] > 0 && v[3] > 0)) {
+      warn("invalid values", value_offset(attr),
+           "invalid viewBox " + quoted(s) + " (expected min-x min-y width height, sizes positive), ignored");
+      return std::nullopt;
+    }
     return ViewBox{v[0], v[1], v[2], v[3]};
   }
 
@@ -569,7 +768,7 @@ class Builder {
     if (v == "auto") return std::nullopt;
     if (!v.empty() && v.back() == '%') {
       warn("root sizes", offset, std::string(name) + " " + quoted(v) +
-                       " is relative to an enclosing viewport, which a file does not have; using the viewBox size");
+                                     " is relative to an enclosing viewport, which a file does not have; using the viewBox size");
       return std::nullopt;
     }
     double value = 0;
@@ -617,7 +816,8 @@ class Builder {
         valid = false;
       if (!trim(s).empty()) valid = false;
       if (!valid) {
-        warn("preserveAspectRatio", value_offset(aspect), "invalid preserveAspectRatio " + quoted(aspect.value()) + ", using xMidYMid meet");
+        warn("invalid values", value_offset(aspect),
+             "invalid preserveAspectRatio " + quoted(aspect.value()) + ", using xMidYMid meet");
         align_x = align_y = 0.5;
         none = slice = false;
       }
@@ -631,12 +831,13 @@ class Builder {
   }
 
   void set_up_viewport(pugi::xml_node root) {
-    std::optional<ViewBox> vb;
-    if (const pugi::xml_attribute attr = root.attribute("viewBox")) vb = parse_view_box(attr);
+    if (const pugi::xml_attribute attr = root.attribute("viewBox")) root_view_box_ = parse_view_box(attr);
+    const std::optional<ViewBox>& vb = root_view_box_;
     std::optional<double> width = root_size(root, "width");
     std::optional<double> height = root_size(root, "height");
     if (!width || !height) {
       if (!vb) {
+        // Browsers use 300 x 150 here; resvg and librsvg use 100%% of nothing. Both sides missing is an error.
         const char* missing = !width && !height ? "width and height" : !width ? "a width" : "a height";
         fail(element_offset(root), std::string("the root <svg> needs ") + missing + " (or a viewBox)");
       }
@@ -650,25 +851,36 @@ class Builder {
         height = vb->height;
       }
     }
-    // Fractional sizes round up so the drawing is not cut off.
-    const double pixels_w = std::ceil(*width - 1e-9), pixels_h = std::ceil(*height - 1e-9);
     try {
-      check_image_size(pixels_w, pixels_h);
+      check_image_size(std::ceil(*width - 1e-9), std::ceil(*height - 1e-9));
     } catch (const Error& e) {
       std::size_t offset = element_offset(root);
-      if (pixels_w > kMaxImageSide && root.attribute("width"))
+      if (*width > kMaxImageSide && root.attribute("width"))
         offset = value_offset(root.attribute("width"));
-      else if (pixels_h > kMaxImageSide && root.attribute("height"))
+      else if (*height > kMaxImageSide && root.attribute("height"))
         offset = value_offset(root.attribute("height"));
       fail(offset, e.what());
     }
-    doc_.intrinsic_width = *width;
-    doc_.intrinsic_height = *height;
-    doc_.width = static_cast<int>(pixels_w);
-    doc_.height = static_cast<int>(pixels_h);
+    tree_.width = *width;
+    tree_.height = *height;
     percent_width_ = vb ? vb->width : *width;
     percent_height_ = vb ? vb->height : *height;
-    if (vb) viewport_ = view_box_transform(*vb, *width, *height, root.attribute("preserveAspectRatio"));
+    root_viewport_ = vb ? view_box_transform(*vb, *width, *height, root.attribute("preserveAspectRatio")) : Affine{};
+  }
+
+  /// The root group's transform: its own transform applies in the viewport, outside the viewBox mapping.
+  Affine root_transform(pugi::xml_node root) { return own_transform(root) * root_viewport_; }
+
+  /// The transform attribute (identity when absent or invalid, with a warning).
+  Affine own_transform(pugi::xml_node node) {
+    Affine own;
+    if (const pugi::xml_attribute t = node.attribute("transform")) {
+      if (!parse_transform(t.value(), own)) {
+        warn("invalid values", value_offset(t), "invalid transform " + quoted(t.value()) + ", ignored");
+        own = Affine{};
+      }
+    }
+    return own;
   }
 
   // ---- elements ----
@@ -695,7 +907,12 @@ class Builder {
       try {
         parse_path_data(d.value(), path);
       } catch (const PathDataError& e) {
-        fail(value_offset(d, e.offset()), "path data: " + e.message());
+        // SVG: render the path up to the first error.
+        warn("path data", value_offset(d, e.offset()), "path data: " + e.message() + ", drawn up to there");
+      } catch (const ParseError&) {
+        throw;
+      } catch (const Error& e) {
+        fail(at, e.what());
       }
     } else if (name == "rect") {
       const double x = get("x", Axis::X).value_or(0), y = get("y", Axis::Y).value_or(0);
@@ -713,7 +930,7 @@ class Builder {
       const Rect r{x, y, x + w, y + h};
       build(at, [&] {
         if (rx.value_or(0) > 0 && ry.value_or(0) > 0)
-          path.add_round_rect(r, *rx, *ry);
+          path.add_round_rect(r, std::min(*rx, w / 2), std::min(*ry, h / 2));
         else
           path.add_rect(r);
       });
@@ -725,6 +942,8 @@ class Builder {
       } else {
         rx = get("rx", Axis::X);
         ry = get("ry", Axis::Y);
+        if (rx && *rx < 0) rx.reset();
+        if (ry && *ry < 0) ry.reset();
         if (!rx) rx = ry;  // SVG 2: a missing radius is "auto", the other one
         if (!ry) ry = rx;
       }
@@ -734,6 +953,7 @@ class Builder {
       }
       if (rx.value_or(0) > 0 && ry.value_or(0) > 0) build(at, [&] { path.add_ellipse(c, *rx, *ry); });
     } else if (name == "polygon" || name == "polyline") {
+      // SVG: numbers up to the first error; an odd last coordinate is dropped.
       const pugi::xml_attribute attr = node.attribute("points");
       const std::string_view s = attr.value();
       std::vector<Point> points;
@@ -743,12 +963,17 @@ class Builder {
       while (pos < s.size()) {
         const std::size_t start = pos;
         double v = 0;
-        if (scan_number(s, pos, v) != NumberScan::Ok) fail(value_offset(attr, start), "points: expected a number");
+        if (scan_number(s, pos, v) != NumberScan::Ok) {
+          warn("invalid values", value_offset(attr, start), "points: expected a number; the points before are drawn");
+          break;
+        }
         numbers.push_back(v);
-        if (detail::skip_comma_wsp(s, pos) && pos == s.size())
-          fail(value_offset(attr, pos), "points: expected a number after ','");
+        detail::skip_comma_wsp(s, pos);
       }
-      if (numbers.size() % 2 != 0) fail(value_offset(attr, pos), "points: odd number of coordinates");
+      if (numbers.size() % 2 != 0) {
+        warn("invalid values", value_offset(attr), "points: odd number of coordinates, the last one is dropped");
+        numbers.pop_back();
+      }
       for (std::size_t i = 0; i + 1 < numbers.size(); i += 2) points.push_back({numbers[i], numbers[i + 1]});
       if (points.size() >= 2) build(at, [&] { path.add_polygon(points, name == "polygon"); });
     } else if (name == "line") {
@@ -759,75 +984,157 @@ class Builder {
     return path;
   }
 
-  /// The colour of a paint with its opacity and the element's opacity folded in; nothing when invisible.
-  static std::optional<Color> paint_color(const Paint& paint, float paint_opacity, const Style& style) {
-    if (!style.visible || paint.kind == PaintKind::None) return std::nullopt;
-    Color color = paint.kind == PaintKind::CurrentColor ? style.current_color : paint.color;
-    color.a *= paint_opacity * style.opacity;
-    if (!(color.a > 0)) return std::nullopt;
-    return color;
+  /// Whether conditional processing attributes let the element render (SVG 1.1 section 5.8.2; the user's
+  /// language is English, we support no extensions, requiredFeatures is true as SVG 2 says).
+  bool conditions_pass(pugi::xml_node node) const {
+    if (const pugi::xml_attribute ext = node.attribute("requiredExtensions")) {
+      (void)ext;
+      return false;  // an empty value is false too
+    }
+    if (const pugi::xml_attribute lang = node.attribute("systemLanguage")) {
+      std::string_view list = lang.value();
+      bool any = false;
+      while (!list.empty()) {
+        const std::size_t comma = list.find(',');
+        const std::string_view item = trim(list.substr(0, comma));
+        if (iequals(item, "en") || detail::istarts_with(item, "en-")) any = true;
+        if (comma == std::string_view::npos) break;
+        list.remove_prefix(comma + 1);
+      }
+      if (!any) return false;
+    }
+    return true;
   }
 
-  /// Emits the fill (unless `line`: a <line> encloses no area), then the stroke of a shape.
-  void add_shape(Path&& path, bool line, const Style& style, const Affine& ctm, std::size_t at) {
+  /// Elements that never render where they stand (referenced only, or holding no graphics).
+  static bool never_rendered(std::string_view name) {
+    static constexpr std::string_view kNames[] = {
+        "defs",   "title", "desc",   "metadata", "symbol", "linearGradient", "radialGradient", "pattern", "clipPath",
+        "mask",   "marker", "filter", "style",   "script", "stop",           "font",           "font-face", "cursor",
+        "view",   "animate", "set",   "animateMotion", "animateTransform", "animateColor", "mpath"};
+    return std::find(std::begin(kNames), std::end(kNames), name) != std::end(kNames);
+  }
+
+  void count_element(std::size_t at, int depth) {
+    if (++element_count_ > kMaxElements)
+      fail(at, "too many elements (the limit is " + std::to_string(kMaxElements) + ", <use> instances included)");
+    if (depth > kMaxDepth)
+      fail(at, "elements nested too deeply (the limit is " + std::to_string(kMaxDepth) + " levels, <use> included)");
+  }
+
+  /// Appends the nodes of the children of `node` (computed style `style`).
+  void children(pugi::xml_node node, const Style& style, std::vector<Node>& out, int depth) {
+    for (const pugi::xml_node child : node.children()) {
+      if (child.type() == pugi::node_element) element(child, style, out, depth + 1);
+    }
+  }
+
+  /// The group effects of a computed style: opacity, blend mode, isolation, clip path, mask.
+  void apply_group_effects(const Style& style, Group& g) {
+    g.opacity = style.opacity;
+    g.blend_mode = style.blend_mode;
+    g.isolate = style.isolate;
+    if (!style.clip_path.empty()) g.clip = clip_path(style.clip_path);
+    if (!style.mask.empty()) g.mask = mask(style.mask);
+  }
+
+  /// Appends what `node` draws to `out`.
+  void element(pugi::xml_node node, const Style& parent, std::vector<Node>& out, int depth) {
+    const std::size_t at = element_offset(node);
+    count_element(at, depth);
+    const std::string_view name = local_name(node);
+    if (name.empty() || never_rendered(name)) return;  // foreign namespaces are skipped silently
+    if (!conditions_pass(node)) return;
+    const bool container = name == "g" || name == "a" || name == "switch";
+    const bool shape = name == "path" || name == "rect" || name == "circle" || name == "ellipse" || name == "line" ||
+                       name == "polyline" || name == "polygon";
+    const bool known = container || shape || name == "use" || name == "svg" || name == "image";
+    if (!known) {
+      warn("unsupported elements", at, "element <" + printable(name) + "> is not supported yet, ignored");
+      return;
+    }
+    const Style style = computed(node, parent);
+    if (!style.displayed) return;  // display: none hides the whole subtree
+
+    Group group;
+    group.id = node.attribute("id").value();
+    group.transform = own_transform(node);
+    if (!group.transform.is_finite()) fail(at, "transform out of range");
+    apply_group_effects(style, group);
+
+    if (container) {
+      if (name == "switch") {
+        for (const pugi::xml_node child : node.children()) {
+          if (child.type() != pugi::node_element || !conditions_pass(child)) continue;
+          const std::string_view child_name = local_name(child);
+          if (child_name.empty() || never_rendered(child_name)) continue;
+          element(child, style, group.children, depth + 1);
+          break;
+        }
+      } else {
+        children(node, style, group.children, depth);
+      }
+    } else if (name == "svg") {
+      nested_viewport(node, node, style, group, depth, std::nullopt, std::nullopt);
+    } else if (name == "use") {
+      if (!use_element(node, style, group, depth)) return;
+    } else if (name == "image") {
+      ImageNode image;
+      image.id = group.id;
+      pugi::xml_attribute href = node.attribute("href");
+      if (!href) href = node.attribute("xlink:href");
+      image.href = href.value();
+      const double x = length_attribute(node, "x", Axis::X).value_or(0);
+      const double y = length_attribute(node, "y", Axis::Y).value_or(0);
+      image.view = Rect{x, y, x + length_attribute(node, "width", Axis::X).value_or(0),
+                        y + length_attribute(node, "height", Axis::Y).value_or(0)};
+      std::tie(image.line, image.column) = lines_.position(at);
+      if (!warned_image_) {
+        warned_image_ = true;
+        warn("unsupported elements", at, "<image> is not drawn yet, ignored (reported once)");
+      }
+      group.children.push_back(Node{std::move(image)});
+    } else {
+      std::optional<PathNode> path = path_node(node, name, style, at);
+      if (!path) return;
+      if (group.transform.is_identity() && !group.needs_layer()) {
+        out.push_back(Node{std::move(*path)});
+        return;
+      }
+      group.children.push_back(Node{std::move(*path)});
+    }
+    if (!group.children.empty()) out.push_back(Node{std::move(group)});
+  }
+
+  /// A shape's PathNode, or nothing when it paints nothing.
+  std::optional<PathNode> path_node(pugi::xml_node node, std::string_view name, const Style& style, std::size_t at) {
+    Path path = shape_path(node, name);
     const auto verbs = path.verbs();
-    if (std::all_of(verbs.begin(), verbs.end(), [](Verb v) { return v == Verb::Move; })) return;  // nothing drawn
-    const auto [source_line, source_column] = lines_.position(at);
-    warn_about_huge_coordinates(path, ctm, at);
-    const std::optional<Color> fill = line ? std::nullopt : paint_color(style.fill, style.fill_opacity, style);
-    const std::optional<Color> stroke =
-        style.stroke_style.width > 0 ? paint_color(style.stroke, style.stroke_opacity, style) : std::nullopt;
-    if (fill) {
-      DrawItem item;
-      item.kind = DrawItem::Kind::Fill;
-      if (stroke)
-        item.path = path;
-      else
-        item.path = std::move(path);
-      item.transform = ctm;
-      item.color = *fill;
-      item.rule = style.fill_rule;
-      item.line = source_line;
-      item.column = source_column;
-      doc_.items.push_back(std::move(item));
+    if (std::all_of(verbs.begin(), verbs.end(), [](Verb v) { return v == Verb::Move; })) return std::nullopt;
+    PathNode p;
+    p.id = node.attribute("id").value();
+    std::tie(p.line, p.column) = lines_.position(at);
+    if (style.visible && name != "line") {
+      const Paint paint = resolve_paint(style.fill, style.fill_opacity, style);
+      if (paint.kind != Paint::Kind::None) p.fill = Fill{paint, style.fill_rule};
     }
-    if (stroke) {
-      DrawItem item;
-      item.kind = DrawItem::Kind::Stroke;
-      item.path = std::move(path);
-      item.transform = ctm;
-      item.color = *stroke;
-      item.stroke = style.stroke_style;
-      item.line = source_line;
-      item.column = source_column;
-      warn_about_dashes(item, at);
-      doc_.items.push_back(std::move(item));
+    if (style.visible && style.stroke_style.width > 0) {
+      const Paint paint = resolve_paint(style.stroke, style.stroke_opacity, style);
+      if (paint.kind != Paint::Kind::None) {
+        p.stroke = Stroke{paint, style.stroke_style};
+        warn_about_dashes(path, style.stroke_style, at);
+      }
     }
-  }
-
-  /// Device coordinates beyond kMaxPreciseCoordinate keep less than a pixel of precision in a double (their
-  /// spacing is 2^-3 px at 1e15 and grows with them), so clipping and outlining them may draw imprecisely.
-  void warn_about_huge_coordinates(const Path& path, const Affine& ctm, std::size_t at) {
-    constexpr double kMaxPreciseCoordinate = 1e15;
-    const Rect b = path.control_bounds();
-    double largest = 0;
-    for (const Point corner : {Point{b.x0, b.y0}, Point{b.x1, b.y0}, Point{b.x0, b.y1}, Point{b.x1, b.y1}}) {
-      const Point d = ctm.apply(corner);
-      largest = std::max({largest, std::fabs(d.x), std::fabs(d.y)});
-    }
-    if (largest > kMaxPreciseCoordinate) {
-      char text[32];
-      std::snprintf(text, sizeof text, "%.3g", largest);
-      warn("huge coordinates", at,
-           std::string("the shape reaches ") + text +
-               " device pixels (control points included), beyond 1e15 where a double keeps sub-pixel precision; "
-               "it may be drawn imprecisely");
-    }
+    if (!p.fill && !p.stroke) return std::nullopt;
+    p.path = std::move(path);
+    p.stroke_first = style.stroke_first;
+    p.crisp_edges = style.crisp_edges;
+    return p;
   }
 
   /// Says why a dashed stroke is drawn solid (the stroker decides the same way, from the same check).
-  void warn_about_dashes(const DrawItem& item, std::size_t at) {
-    switch (check_dashes(item.path, item.stroke.dashes)) {
+  void warn_about_dashes(const Path& path, const StrokeStyle& stroke, std::size_t at) {
+    switch (check_dashes(path, stroke.dashes)) {
       case DashVerdict::Invalid:
         warn("dash patterns", at, "stroke-dasharray sums to zero or overflows, the stroke is drawn solid");
         break;
@@ -842,63 +1149,385 @@ class Builder {
     }
   }
 
-  void element(pugi::xml_node node, const Style& parent, const Affine& parent_ctm, int depth) {
+  /// A nested viewport (<svg> inside the document, or a <symbol> instanced by <use>): x, y, width, height
+  /// (from `size_from`, default 100%), viewBox and preserveAspectRatio of `node`, a clip to the viewport
+  /// unless overflow is visible, then the children.
+  void nested_viewport(pugi::xml_node node, pugi::xml_node size_from, const Style& style, Group& group, int depth,
+                       std::optional<double> use_width, std::optional<double> use_height) {
+    const double x = local_name(node) == "svg" ? length_attribute(node, "x", Axis::X).value_or(0) : 0;
+    const double y = local_name(node) == "svg" ? length_attribute(node, "y", Axis::Y).value_or(0) : 0;
+    double width = use_width ? *use_width : length_attribute(size_from, "width", Axis::X).value_or(percent_width_);
+    double height = use_height ? *use_height : length_attribute(size_from, "height", Axis::Y).value_or(percent_height_);
+    if (!(width > 0) || !(height > 0)) return;  // a zero-sized viewport draws nothing
+    std::optional<ViewBox> vb;
+    if (const pugi::xml_attribute attr = node.attribute("viewBox")) vb = parse_view_box(attr);
+    Group inner;
+    inner.transform = Affine::translate(x, y);
+    if (vb) inner.transform = inner.transform * view_box_transform(*vb, width, height, node.attribute("preserveAspectRatio"));
+    if (!style.overflow_visible) {
+      auto clip = std::make_shared<ClipPath>();
+      auto content = std::make_shared<Group>();
+      PathNode rect;
+      rect.path.add_rect(Rect{x, y, x + width, y + height});
+      rect.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1}, FillRule::NonZero};
+      content->children.push_back(Node{std::move(rect)});
+      clip->content = std::move(content);
+      group.clip = std::move(clip);
+    }
+    const double saved_w = percent_width_, saved_h = percent_height_;
+    percent_width_ = vb ? vb->width : width;
+    percent_height_ = vb ? vb->height : height;
+    children(node, style, inner.children, depth);
+    percent_width_ = saved_w;
+    percent_height_ = saved_h;
+    if (!inner.children.empty()) group.children.push_back(Node{std::move(inner)});
+  }
+
+  /// <use>: an instance of the referenced element (or symbol) under a translate(x, y). Returns false when the
+  /// reference is missing or loops (the use draws nothing, with a warning, as browsers do).
+  bool use_element(pugi::xml_node node, const Style& style, Group& group, int depth) {
+    const pugi::xml_node target = href_target(node);
+    if (!target) return false;
     const std::size_t at = element_offset(node);
-    if (++element_count_ > kMaxElements)
-      fail(at, "too many elements (the limit is " + std::to_string(kMaxElements) + ")");
-    if (depth > kMaxDepth)
-      fail(at, "elements nested too deeply (the limit is " + std::to_string(kMaxDepth) + " levels)");
-
-    const std::string_view name = node.name();
-    const bool root = depth == 1;
-    // Elements that are never drawn where they stand (they are only referenced, or hold no graphics).
-    static constexpr std::string_view kSilent[] = {"defs",     "title",          "desc",           "metadata",
-                                                   "symbol",   "linearGradient", "radialGradient", "pattern",
-                                                   "clipPath", "mask",           "marker",         "filter"};
-    if (!root && std::find(std::begin(kSilent), std::end(kSilent), name) != std::end(kSilent)) return;
-    const bool container = root || name == "g" || name == "a";
-    const bool shape = name == "path" || name == "rect" || name == "circle" || name == "ellipse" || name == "line" ||
-                       name == "polyline" || name == "polygon";
-    if (!container && !shape) {
-      warn("unsupported elements", at, "element <" + printable(name) + "> is not supported yet, ignored");
-      return;
-    }
-
-    Style style = parent;
-    float own_opacity = 1;
-    if (!apply_properties(node, style, own_opacity)) return;  // display: none hides the whole subtree
-    style.opacity = parent.opacity * own_opacity;
-
-    Affine own;
-    if (const pugi::xml_attribute t = node.attribute("transform")) {
-      if (!parse_transform(t.value(), own)) fail(value_offset(t), "invalid transform " + quoted(t.value()));
-    }
-    // The root's transform applies in the viewport, outside its viewBox mapping (SVG 2).
-    const Affine ctm = root ? own * viewport_ : parent_ctm * own;
-    if (!ctm.is_finite()) fail(at, "transform out of range");
-
-    if (container) {
-      if (own_opacity < 1 && node.first_child()) {
-        warn("group opacity", at, "group opacity is approximated: opacity on <" + std::string(name) +
-                     "> is multiplied into each child's alpha (overlapping children differ from a browser)");
+    for (pugi::xml_node n = node; n; n = n.parent()) {
+      if (n == target) {
+        warn("references", at, "<use> refers to an element that contains it (a reference loop), ignored");
+        return false;
       }
-      for (const pugi::xml_node child : node.children()) {
-        if (child.type() == pugi::node_element) element(child, style, ctm, depth + 1);
-      }
-      return;
     }
-    add_shape(shape_path(node, name), name == "line", style, ctm, at);
+    if (std::find(use_stack_.begin(), use_stack_.end(), target) != use_stack_.end()) {
+      warn("references", at, "<use> reference loop through " + quoted(target.attribute("id").value()) + ", ignored");
+      return false;
+    }
+    if (++use_instances_ > kMaxUseInstances) {
+      fail(at, "too many <use> instances (the limit is " + std::to_string(kMaxUseInstances) +
+                   "): nested uses multiply; is this a \"billion laughs\" document?");
+    }
+    const double x = length_attribute(node, "x", Axis::X).value_or(0);
+    const double y = length_attribute(node, "y", Axis::Y).value_or(0);
+    group.transform = group.transform * Affine::translate(x, y);
+    use_stack_.push_back(target);
+    if (local_name(target) == "symbol") {
+      count_element(element_offset(target), depth + 1);
+      const Style symbol_style = computed(target, style);
+      if (symbol_style.displayed) {
+        Group symbol;
+        apply_group_effects(symbol_style, symbol);
+        symbol.transform = own_transform(target);
+        nested_viewport(target, target, symbol_style, symbol, depth + 1, length_attribute(node, "width", Axis::X),
+                        length_attribute(node, "height", Axis::Y));
+        if (!symbol.children.empty()) group.children.push_back(Node{std::move(symbol)});
+      }
+    } else if (local_name(target) == "svg") {
+      Group inner;
+      const Style svg_style = computed(target, style);
+      if (svg_style.displayed) {
+        apply_group_effects(svg_style, inner);
+        nested_viewport(target, target, svg_style, inner, depth + 1, length_attribute(node, "width", Axis::X),
+                        length_attribute(node, "height", Axis::Y));
+        if (!inner.children.empty()) group.children.push_back(Node{std::move(inner)});
+      }
+    } else {
+      element(target, style, group.children, depth + 1);
+    }
+    use_stack_.pop_back();
+    return true;
+  }
+
+  // ---- paint servers, clip paths, masks ----
+
+  Paint resolve_paint(const DeclaredPaint& d, float opacity, const Style& style) {
+    Paint paint;
+    paint.opacity = opacity;
+    using K = DeclaredPaint::Kind;
+    auto simple = [&](K kind, Color color) {
+      if (kind == K::Color) {
+        paint.kind = Paint::Kind::Color;
+        paint.color = color;
+      } else if (kind == K::CurrentColor) {
+        paint.kind = Paint::Kind::Color;
+        paint.color = style.current_color;
+      } else {
+        paint.kind = Paint::Kind::None;  // none, and context paints outside markers and use
+      }
+    };
+    if (d.kind != K::Url) {
+      simple(d.kind, d.color);
+      return paint;
+    }
+    const pugi::xml_node target = by_id(d.url);
+    const std::string_view kind = target ? local_name(target) : std::string_view{};
+    if (kind == "linearGradient" || kind == "radialGradient") {
+      const std::shared_ptr<const Gradient> g = gradient(target);
+      if (g && g->stops.size() >= 2) {
+        paint.kind = Paint::Kind::Gradient;
+        paint.gradient = g;
+        return paint;
+      }
+      if (g && g->stops.size() == 1) {  // one stop: a solid colour
+        paint.kind = Paint::Kind::Color;
+        paint.color = g->stops[0].color;
+        return paint;
+      }
+      if (g) return paint;  // no stops: none
+    } else if (kind == "pattern") {
+      if (std::shared_ptr<const Pattern> p = pattern(target)) {
+        paint.kind = Paint::Kind::Pattern;
+        paint.pattern = std::move(p);
+        return paint;
+      }
+    } else if (!target) {
+      if (!d.fallback_kind) warn("references", d.offset, "no paint server with id " + quoted(d.url) + ", painted as none");
+    }
+    // A missing or unusable paint server: the fallback, else none (SVG 2, 13.2: "as if none").
+    if (d.fallback_kind) simple(*d.fallback_kind, d.color);
+    return paint;
+  }
+
+  /// The href chain of a paint server, `node` first; stops at a loop (with a warning) or a non-server.
+  std::vector<pugi::xml_node> href_chain(pugi::xml_node node) {
+    std::vector<pugi::xml_node> chain{node};
+    while (chain.size() < kMaxReferenceDepth) {
+      const pugi::xml_node next = href_target(chain.back(), false);
+      if (!next) break;
+      if (std::find(chain.begin(), chain.end(), next) != chain.end()) {
+        warn("references", element_offset(chain.back()), "href loop between paint servers, the chain stops here");
+        break;
+      }
+      const std::string_view kind = local_name(next);
+      if (kind != "linearGradient" && kind != "radialGradient" && kind != "pattern") break;
+      chain.push_back(next);
+    }
+    return chain;
+  }
+
+  static pugi::xml_attribute chain_attribute(const std::vector<pugi::xml_node>& chain, const char* name) {
+    for (const pugi::xml_node n : chain) {
+      if (const pugi::xml_attribute a = n.attribute(name)) return a;
+    }
+    return {};
+  }
+
+  static Units units_of(pugi::xml_attribute a, Units fallback) {
+    if (!a) return fallback;
+    const std::string_view v = trim(a.value());
+    if (v == "userSpaceOnUse") return Units::UserSpaceOnUse;
+    if (v == "objectBoundingBox") return Units::ObjectBoundingBox;
+    return fallback;
+  }
+
+  /// A coordinate of a paint server: for objectBoundingBox a number or a percentage (a fraction); for
+  /// userSpaceOnUse a length (percentages of the viewport).
+  std::optional<double> server_length(pugi::xml_attribute a, Units units, Axis axis) {
+    if (!a) return std::nullopt;
+    const std::string_view v = trim(a.value());
+    double out = 0;
+    if (units == Units::ObjectBoundingBox) {
+      if (const std::optional<double> f = number_or_percent(v)) return f;
+      if (parse_length(v, axis, out)) return out;
+    } else if (parse_length(v, axis, out)) {
+      return out;
+    }
+    warn("invalid values", value_offset(a), "invalid " + printable(a.name()) + " " + quoted(v) + ", ignored");
+    return std::nullopt;
+  }
+
+  std::shared_ptr<const Gradient> gradient(pugi::xml_node node) {
+    const auto cached = gradients_.find(node.internal_object());
+    if (cached != gradients_.end()) return cached->second;
+    const std::vector<pugi::xml_node> chain = href_chain(node);
+    auto g = std::make_shared<Gradient>();
+    g->id = node.attribute("id").value();
+    g->kind = local_name(node) == "radialGradient" ? Gradient::Kind::Radial : Gradient::Kind::Linear;
+    g->units = units_of(chain_attribute(chain, "gradientUnits"), Units::ObjectBoundingBox);
+    if (const pugi::xml_attribute t = chain_attribute(chain, "gradientTransform")) {
+      if (!parse_transform(t.value(), g->transform)) {
+        warn("invalid values", value_offset(t), "invalid gradientTransform " + quoted(t.value()) + ", ignored");
+        g->transform = Affine{};
+      }
+    }
+    if (const pugi::xml_attribute s = chain_attribute(chain, "spreadMethod")) {
+      const std::string_view v = trim(s.value());
+      g->spread = v == "reflect" ? Spread::Reflect : v == "repeat" ? Spread::Repeat : Spread::Pad;
+    }
+    auto get = [&](const char* name, Axis axis, double fallback) {
+      return server_length(chain_attribute(chain, name), g->units, axis).value_or(fallback);
+    };
+    const bool user = g->units == Units::UserSpaceOnUse;
+    if (g->kind == Gradient::Kind::Linear) {
+      g->x1 = get("x1", Axis::X, 0);
+      g->y1 = get("y1", Axis::Y, 0);
+      g->x2 = get("x2", Axis::X, user ? percent_width_ : 1);
+      g->y2 = get("y2", Axis::Y, 0);
+    } else {
+      g->cx = get("cx", Axis::X, user ? percent_width_ / 2 : 0.5);
+      g->cy = get("cy", Axis::Y, user ? percent_height_ / 2 : 0.5);
+      const double half_diagonal = std::sqrt((percent_width_ * percent_width_ + percent_height_ * percent_height_) / 2) / 2;
+      g->r = get("r", Axis::Other, user ? half_diagonal : 0.5);
+      g->fx = get("fx", Axis::X, g->cx);
+      g->fy = get("fy", Axis::Y, g->cy);
+      g->fr = get("fr", Axis::Other, 0);
+      if (g->r < 0) g->r = 0;
+    }
+    // Stops: those of the first element in the chain that has any.
+    for (const pugi::xml_node n : chain) {
+      bool any = false;
+      for (const pugi::xml_node stop : n.children()) {
+        if (stop.type() != pugi::node_element || local_name(stop) != "stop") continue;
+        any = true;
+        const Style s = computed(stop, Style{});
+        double offset = 0;
+        if (const pugi::xml_attribute o = stop.attribute("offset")) {
+          const std::optional<double> v = number_or_percent(o.value());
+          if (!v) warn("invalid values", value_offset(o), "invalid stop offset " + quoted(o.value()) + ", using 0");
+          offset = std::clamp(v.value_or(0.0), 0.0, 1.0);
+        }
+        if (!g->stops.empty()) offset = std::max(offset, g->stops.back().offset);
+        g->stops.push_back(GradientStop{offset, s.stop_color.with_alpha(s.stop_opacity)});
+      }
+      if (any) break;
+    }
+    gradients_.emplace(node.internal_object(), g);
+    return g;
+  }
+
+  std::shared_ptr<const Pattern> pattern(pugi::xml_node node) {
+    const auto cached = patterns_.find(node.internal_object());
+    if (cached != patterns_.end()) return cached->second;
+    if (std::find(resolving_.begin(), resolving_.end(), node) != resolving_.end()) {
+      warn("references", element_offset(node), "pattern refers to itself through its content, painted as none");
+      return nullptr;
+    }
+    const std::vector<pugi::xml_node> chain = href_chain(node);
+    auto p = std::make_shared<Pattern>();
+    p->id = node.attribute("id").value();
+    p->units = units_of(chain_attribute(chain, "patternUnits"), Units::ObjectBoundingBox);
+    p->content_units = units_of(chain_attribute(chain, "patternContentUnits"), Units::UserSpaceOnUse);
+    if (const pugi::xml_attribute t = chain_attribute(chain, "patternTransform")) {
+      if (!parse_transform(t.value(), p->transform)) p->transform = Affine{};
+    }
+    auto get = [&](const char* name, Axis axis) {
+      return server_length(chain_attribute(chain, name), p->units, axis).value_or(0);
+    };
+    const double x = get("x", Axis::X), y = get("y", Axis::Y);
+    p->rect = Rect{x, y, x + get("width", Axis::X), y + get("height", Axis::Y)};
+    if (const pugi::xml_attribute vb = chain_attribute(chain, "viewBox")) {
+      if (const std::optional<ViewBox> v = parse_view_box(vb)) p->view_box = Rect{v->x, v->y, v->x + v->width, v->y + v->height};
+    }
+    resolving_.push_back(node);
+    auto content = std::make_shared<Group>();
+    for (const pugi::xml_node n : chain) {
+      if (!n.first_child()) continue;
+      const Style s = computed(n, Style{});
+      children(n, s, content->children, 1);
+      break;
+    }
+    resolving_.pop_back();
+    p->content = std::move(content);
+    patterns_.emplace(node.internal_object(), p);
+    return p;
+  }
+
+  /// Whether `node` is being resolved already (a reference loop); if so every element of the loop is marked
+  /// invalid: a clip path or mask in a loop clips or masks everything, as resvg and browsers do.
+  bool in_loop(pugi::xml_node node) {
+    const auto it = std::find(resolving_.begin(), resolving_.end(), node);
+    if (it == resolving_.end()) return false;
+    for (auto i = it; i != resolving_.end(); ++i) invalid_.insert(i->internal_object());
+    return true;
+  }
+
+  std::shared_ptr<const ClipPath> clip_path(const std::string& id) {
+    const pugi::xml_node node = by_id(id);
+    if (!node || local_name(node) != "clipPath") {
+      warn("references", 0, "clip-path: no clipPath with id " + quoted(id) + ", ignored");
+      return nullptr;
+    }
+    const auto cached = clips_.find(node.internal_object());
+    if (cached != clips_.end()) return cached->second;
+    if (in_loop(node)) {
+      warn("references", element_offset(node), "clipPath " + quoted(id) + " refers to itself (a reference loop); "
+                                                "what it clips is not drawn");
+      return std::make_shared<ClipPath>(ClipPath{id, Units::UserSpaceOnUse, Affine{}, nullptr, nullptr});
+    }
+    resolving_.push_back(node);
+    auto clip = std::make_shared<ClipPath>();
+    clip->id = id;
+    clip->units = units_of(node.attribute("clipPathUnits"), Units::UserSpaceOnUse);
+    clip->transform = own_transform(node);
+    const Style s = computed(node, Style{});
+    auto content = std::make_shared<Group>();
+    children(node, s, content->children, 1);
+    clip->content = std::move(content);
+    if (!s.clip_path.empty()) clip->clip = clip_path(s.clip_path);
+    resolving_.pop_back();
+    if (invalid_.count(node.internal_object())) clip->content = nullptr;  // part of a loop: clips everything
+    clips_.emplace(node.internal_object(), clip);
+    return clip;
+  }
+
+  std::shared_ptr<const Mask> mask(const std::string& id) {
+    const pugi::xml_node node = by_id(id);
+    if (!node || local_name(node) != "mask") {
+      warn("references", 0, "mask: no mask with id " + quoted(id) + ", ignored");
+      return nullptr;
+    }
+    const auto cached = masks_.find(node.internal_object());
+    if (cached != masks_.end()) return cached->second;
+    if (in_loop(node)) {
+      warn("references", element_offset(node), "mask " + quoted(id) + " refers to itself (a reference loop); "
+                                                "what it masks is not drawn");
+      Mask empty;
+      empty.id = id;
+      return std::make_shared<Mask>(std::move(empty));
+    }
+    resolving_.push_back(node);
+    auto m = std::make_shared<Mask>();
+    m->id = id;
+    m->units = units_of(node.attribute("maskUnits"), Units::ObjectBoundingBox);
+    m->content_units = units_of(node.attribute("maskContentUnits"), Units::UserSpaceOnUse);
+    auto get = [&](const char* name, Axis axis, double fallback) {
+      return server_length(node.attribute(name), m->units, axis).value_or(fallback);
+    };
+    const bool bbox = m->units == Units::ObjectBoundingBox;
+    const double x = get("x", Axis::X, bbox ? -0.1 : -0.1 * percent_width_);
+    const double y = get("y", Axis::Y, bbox ? -0.1 : -0.1 * percent_height_);
+    m->rect = Rect{x, y, x + get("width", Axis::X, bbox ? 1.2 : 1.2 * percent_width_),
+                   y + get("height", Axis::Y, bbox ? 1.2 : 1.2 * percent_height_)};
+    m->luminance = trim(node.attribute("mask-type").value()) != "alpha";
+    const Style s = computed(node, Style{});
+    auto content = std::make_shared<Group>();
+    children(node, s, content->children, 1);
+    m->content = std::move(content);
+    if (!s.mask.empty()) m->mask = mask(s.mask);
+    resolving_.pop_back();
+    if (invalid_.count(node.internal_object())) m->content = nullptr;  // part of a loop: masks everything
+    masks_.emplace(node.internal_object(), m);
+    return m;
   }
 
   std::string_view text_;
   const std::string& file_;
   LineIndex lines_;
   std::string buffer_;  // the private copy pugixml parses in place
-  Document doc_;
-  Affine viewport_;
+  pugi::xml_document xml_;
+  Tree tree_;
+  std::optional<ViewBox> root_view_box_;
+  Affine root_viewport_;
   double percent_width_ = 0, percent_height_ = 0;  // what percentages of lengths refer to
-  std::size_t element_count_ = 0;
-  std::vector<std::string> warned_once_;
+  std::size_t element_count_ = 0, use_instances_ = 0;
+  std::unordered_map<std::string_view, pugi::xml_node> ids_;
+  std::vector<std::string> svg_prefixes_;
+  css::StyleSheet sheet_;
+  std::vector<pugi::xml_node> path_;       // scratch: the ancestors of the element being styled
+  std::vector<pugi::xml_node> use_stack_;  // use targets being instanced
+  std::vector<pugi::xml_node> resolving_;  // patterns, clip paths and masks being resolved
+  std::unordered_map<const void*, std::shared_ptr<const Gradient>> gradients_;
+  std::unordered_map<const void*, std::shared_ptr<const Pattern>> patterns_;
+  std::unordered_map<const void*, std::shared_ptr<const ClipPath>> clips_;
+  std::unordered_map<const void*, std::shared_ptr<const Mask>> masks_;
+  std::unordered_set<const void*> invalid_;  // clip paths and masks found in a reference loop
+  bool warned_filter_ = false, warned_marker_ = false, warned_image_ = false;
   struct WarningCount {
     std::string_view kind;  // always a string literal
     std::size_t count;
@@ -907,9 +1536,130 @@ class Builder {
   std::vector<WarningCount> warning_counts_;
 };
 
+/// Turns the tree into draw items for the core Renderer: transforms composed, group opacity multiplied into
+/// each child's alpha (an approximation where children overlap), paints it cannot draw yet left out with one
+/// warning each (gradients, patterns, clip paths, masks, blend modes wait for the canvas).
+class Flattener {
+ public:
+  explicit Flattener(Document& doc) : doc_(doc) {}
+
+  void group(const Group& g, const Affine& parent, float opacity) {
+    const Affine ctm = parent * g.transform;
+    if ((g.clip && !g.clip->content) || (g.mask && !g.mask->content)) return;  // clipped or masked away entirely
+    if (g.clip && !is_viewport_clip(*g.clip)) note("clip paths are not applied yet (drawn unclipped)");
+    if (g.mask) note("masks are not applied yet (drawn unmasked)");
+    if (g.blend_mode != "normal") note("mix-blend-mode is not applied yet (drawn as normal)");
+    if (g.opacity < 1 && !single_paint(g)) {
+      note("group opacity is approximated: it is multiplied into each child's alpha (overlaps differ)");
+    }
+    for (const Node& child : g.children) {
+      if (const Group* sub = std::get_if<Group>(&child.value)) {
+        group(*sub, ctm, opacity * g.opacity);
+      } else if (const PathNode* path = std::get_if<PathNode>(&child.value)) {
+        this->path(*path, ctm, opacity * g.opacity);
+      }
+    }
+  }
+
+  void finish() {
+    for (const std::string& n : notes_) doc_.warnings.push_back("0:0: " + n);
+  }
+
+ private:
+  /// A nested viewport's clip is a rectangle; drawing without it is only wrong where content overflows.
+  static bool is_viewport_clip(const ClipPath& clip) {
+    return clip.id.empty() && clip.content && clip.content->children.size() == 1 && !clip.clip;
+  }
+
+  /// Whether a group draws exactly one fill or one stroke (then multiplying its opacity in is exact).
+  static bool single_paint(const Group& g) {
+    if (g.children.size() != 1) return false;
+    if (const Group* sub = std::get_if<Group>(&g.children[0].value)) return single_paint(*sub);
+    const PathNode* p = std::get_if<PathNode>(&g.children[0].value);
+    return p && !(p->fill && p->stroke);
+  }
+
+  void note(const std::string& message) {
+    if (std::find(notes_.begin(), notes_.end(), message) == notes_.end()) notes_.push_back(message);
+  }
+
+  std::optional<Color> color_of(const Paint& paint, float opacity) {
+    if (paint.kind == Paint::Kind::Gradient) {
+      note("gradients are not drawn yet (the shape's paint is left out)");
+      return std::nullopt;
+    }
+    if (paint.kind == Paint::Kind::Pattern) {
+      note("patterns are not drawn yet (the shape's paint is left out)");
+      return std::nullopt;
+    }
+    if (paint.kind != Paint::Kind::Color) return std::nullopt;
+    Color c = paint.color;
+    c.a *= paint.opacity * opacity;
+    if (!(c.a > 0)) return std::nullopt;
+    return c;
+  }
+
+  void path(const PathNode& p, const Affine& ctm, float opacity) {
+    std::optional<Color> fill, stroke;
+    if (p.fill) fill = color_of(p.fill->paint, opacity);
+    if (p.stroke) stroke = color_of(p.stroke->paint, opacity);
+    auto emit_fill = [&] {
+      if (!fill) return;
+      DrawItem item;
+      item.kind = DrawItem::Kind::Fill;
+      item.path = p.path;
+      item.transform = ctm;
+      item.color = *fill;
+      item.rule = p.fill->rule;
+      item.line = p.line;
+      item.column = p.column;
+      doc_.items.push_back(std::move(item));
+    };
+    auto emit_stroke = [&] {
+      if (!stroke) return;
+      DrawItem item;
+      item.kind = DrawItem::Kind::Stroke;
+      item.path = p.path;
+      item.transform = ctm;
+      item.color = *stroke;
+      item.stroke = p.stroke->style;
+      item.line = p.line;
+      item.column = p.column;
+      doc_.items.push_back(std::move(item));
+    };
+    if (p.stroke_first) {
+      emit_stroke();
+      emit_fill();
+    } else {
+      emit_fill();
+      emit_stroke();
+    }
+  }
+
+  Document& doc_;
+  std::vector<std::string> notes_;
+};
+
 }  // namespace
 
-Document parse_svg(std::string_view text, const std::string& file) { return Builder(text, file).run(); }
+Tree parse_svg_tree(std::string_view text, const std::string& file) { return Builder(text, file).run(); }
+
+Document to_document(const Tree& tree) {
+  Document doc;
+  doc.file = tree.file;
+  doc.intrinsic_width = tree.width;
+  doc.intrinsic_height = tree.height;
+  // Fractional sizes round up so the drawing is not cut off.
+  doc.width = static_cast<int>(std::ceil(tree.width - 1e-9));
+  doc.height = static_cast<int>(std::ceil(tree.height - 1e-9));
+  doc.warnings = tree.warnings;
+  Flattener flattener(doc);
+  flattener.group(tree.root, Affine{}, 1);
+  flattener.finish();
+  return doc;
+}
+
+Document parse_svg(std::string_view text, const std::string& file) { return to_document(parse_svg_tree(text, file)); }
 
 Document load_svg(const std::string& path) {
   const std::vector<std::uint8_t> bytes = read_file_limited(path, kMaxSvgFileBytes, "SVG file");

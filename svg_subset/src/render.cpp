@@ -2,8 +2,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <string>
-#include <type_traits>
 #include <vector>
 
 #include "svg_subset/svg.hpp"
@@ -44,15 +42,12 @@ Path hairline_centre_lines(const DrawItem& item, double device_tolerance) {
 }
 
 template <class T>
-void draw_hairline(BasicImage<T>& image, const DrawItem& item, HairlineMode mode, double tolerance) {
-  if (!item.transform.is_finite()) return;
+void draw_hairline(BasicImage<T>& image, const DrawItem& item, HairlineMode mode, double tolerance,
+                   Renderer& renderer) {
+  if (!item.transform.is_finite() || !(item.color.a > 0)) return;
   const Path lines = hairline_centre_lines(item, tolerance);
-  if constexpr (std::is_same_v<T, std::uint8_t>) {
-    draw_hairlines(image, lines, item.transform, item.color, mode);
-  } else {
-    SolidCompositor<T> compositor(image, item.color);
-    hairline_coverage(lines, item.transform, mode, image.width, image.height, compositor);
-  }
+  SolidCompositor<T> compositor(image, item.color);
+  renderer.hairlines(lines, item.transform, mode, image.width, image.height, compositor);
 }
 
 }  // namespace
@@ -85,19 +80,13 @@ void scale_to(Document& doc, int width, int height) {
 
 template <class T>
 void render(const Document& doc, BasicImage<T>& image, const RenderSettings& settings, Renderer& renderer) {
-  const std::uint64_t flattened_before = renderer.flattened_points();
   for (const DrawItem& item : doc.items) {
-    if (renderer.flattened_points() - flattened_before > kMaxDocumentFlattenedPoints) {
-      throw ParseError(doc.file, item.line, item.column,
-                       "the document needs more than " + std::to_string(kMaxDocumentFlattenedPoints) +
-                           " line segments in all (the limit per document); stopped at this element");
-    }
     try {
       if (item.is_fill()) {
         const FillOptions options{settings.rule_override.value_or(item.rule), settings.aa, settings.tolerance};
         renderer.fill(image, item.path, item.transform, item.color, options);
       } else if (settings.hairline) {
-        draw_hairline(image, item, *settings.hairline, settings.tolerance);
+        draw_hairline(image, item, *settings.hairline, settings.tolerance, renderer);
       } else {
         const StrokeRenderOptions options{settings.aa, settings.tolerance, HairlineMode::Analytic, &renderer};
         stroke_path(image, item.path, item.transform, item.stroke, item.color, options);

@@ -89,6 +89,7 @@ struct TextArgs {
   TextStyle style;
   LayoutOptions layout;
   GlyphRenderOptions render;
+  AntiAliasMethod aa;  ///< --aa: render.aa is its coverage mode
   Color color = Color::rgb8(0, 0, 0);
   Color background = Color::transparent();
   double margin = 8;
@@ -151,7 +152,8 @@ TextArgs parse_args(int argc, char** argv) {
       (arg == "--color" ? a.color : a.background) = *c;
     } else if (arg == "--aa") {
       const auto v = value(arg);
-      if (!parse_anti_alias(v, a.render.aa)) throw UsageError{"--aa: unknown mode " + quoted(v)};
+      if (!parse_anti_alias_method(v, a.aa)) throw UsageError{"--aa: unknown mode " + quoted(v)};
+      a.render.aa = a.aa.coverage;
     } else if (arg == "--features") {
       a.style.features = value(arg);
     } else if (arg == "--lang") {
@@ -196,7 +198,7 @@ int run_text_command(int argc, char** argv) {
     // Integer translation: glyphs keep the subpixel phases layout gave them.
     const Affine place = Affine::translate(std::round(a.margin - box.x0), std::round(a.margin - box.y0));
     renderer.draw(image, layout, a.color, place, a.render);
-    if (a.render.aa == AntiAlias::Fxaa) fxaa(image);  // the rasterizer drew it aliased; the filter comes after
+    post_filter(a.aa, image);  // fxaa: the aliased drawing, then the filter
     write_png(a.output, image);
     return 0;
   } catch (const UsageError& e) {

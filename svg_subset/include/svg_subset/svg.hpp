@@ -1,7 +1,7 @@
 // svg_subset: reads a subset of SVG into a resolved list of draw items, and renders it with vraster.
 //
-// Data flow: XML text (pugixml) -> element tree walk (presentation attributes inherited, transforms composed)
-// -> Document (flat, fully resolved draw items in paint order) -> render() through vraster::Renderer.
+// Data flow: XML text (pugixml) -> the resolved tree (tree.hpp: CSS cascade, inheritance, units, references)
+// -> Document (flat draw items in paint order, what the core Renderer can draw) -> render().
 #pragma once
 
 #include <cstdint>
@@ -53,7 +53,8 @@ class PathDataError : public Error {
 /// segments before it.
 void parse_path_data(std::string_view d, Path& out);
 
-/// Parses a colour: #rgb, #rrggbb, rgb(...), the CSS named colours. Returns nothing for "none" or garbage.
+/// Parses a colour: #rgb, #rgba, #rrggbb, #rrggbbaa, rgb(), rgba(), hsl(), hsla(), the CSS named colours,
+/// transparent. Returns nothing for "none" (is_none set) or garbage; currentColor is the caller's business.
 std::optional<Color> parse_color(std::string_view text, bool& is_none);
 
 /// Parses an SVG transform list ("translate(1 2) rotate(30)"); returns false on a syntax error.
@@ -94,8 +95,15 @@ std::pair<int, int> output_size(const Document& doc, int width, int height);
 /// Scales the drawing to `width` x `height` pixels (each axis on its own, from the intrinsic size).
 void scale_to(Document& doc, int width, int height);
 
-/// Parses SVG text. `file` is used only in messages. Throws ParseError for malformed XML, a missing or bad
-/// root size, malformed path data, and other errors that make the document unusable.
+struct Tree;
+
+/// Flattens a resolved tree (tree.hpp) into draw items for the core Renderer: what it cannot draw yet
+/// (gradients, patterns, clip paths, masks, blend modes) is left out with a warning.
+Document to_document(const Tree& tree);
+
+/// Parses SVG text: parse_svg_tree() then to_document(). `file` is used only in messages. Throws ParseError only
+/// for a document that cannot be used at all (malformed XML, no <svg> root, a size that cannot be resolved or
+/// is out of range, a limit exceeded); invalid values are ignored with a warning, as browsers do.
 Document parse_svg(std::string_view text, const std::string& file = "<memory>");
 /// Reads and parses a file (throws vraster::Error when it cannot be read).
 Document load_svg(const std::string& path);
@@ -110,12 +118,8 @@ struct RenderSettings {
   std::optional<HairlineMode> hairline;
 };
 
-/// Most line segments the fills and strokes of one document may flatten to in all (2^25).
-inline constexpr std::uint64_t kMaxDocumentFlattenedPoints = std::uint64_t{1} << 25;
-
 /// Draws every item of `doc` onto `image` (which should be doc.width x doc.height) in order. A core limit
-/// reached by one item (vraster::Error) is rethrown as a ParseError at that item's element, and so is passing
-/// kMaxDocumentFlattenedPoints.
+/// reached by one item (vraster::Error) is rethrown as a ParseError at that item's element.
 template <class T>
 void render(const Document& doc, BasicImage<T>& image, const RenderSettings& settings, Renderer& renderer);
 

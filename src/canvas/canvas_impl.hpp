@@ -1,0 +1,152 @@
+// The canvas's private state: drawing state, clip, layers, and the drawing pipeline's reusable buffers.
+//
+// Every draw call goes the same way (src/canvas/draw.cpp):
+//   1. a CoverageSource (path, coverage mask, blurred shadow plane) produces coverage for a device rectangle
+//   2. ClipSink: offsets it to device pixels, adds the clip mask, and for unbounded operators covers the whole clip
+//      region row by row (coverage 0 outside the shape)
+//   3. Compositor<T> (src/paint/): paint + operator + global alpha onto the target or the innermost layer.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "canvas/arcs.hpp"
+#include "vraster/canvas.hpp"
+#include "vraster/renderer.hpp"
+
+namespace vraster::canvas_detail {
+
+/// A rectangle of whole device pixels [x0, x1) x [y0, y1).
+struct IntRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+  IntRect intersect(const IntRect& o) const;
+  IntRect expand(int d) const;
+  IntRect offset(int dx, int dy) const;
+  /// The pixels a device box touches (rounded outwards, clamped to +-2^30 so that nothing overflows).
+  static IntRect covering(const Rect& r);
+};
+
+/// A clip's coverage in [0, 1], one float per pixel of `box`.
+struct ClipMask {
+  IntRect box;
+  std::vector<float> coverage;
+  const float* at(int x, int y) const {
+    return coverage.data() + static_cast<std::size_t>(y - box.y0) * box.width() + (x - box.x0);
+  }
+};
+
+/// The clip: pixels outside `box` are clipped away; inside it, `mask` (when set) multiplies coverage. A clip that
+/// is a pixel-aligned rectangle has no mask. `box` lies inside mask->box.
+struct Clip {
+  IntRect box;
+  std::shared_ptr<const ClipMask> mask;
+};
+
+/// Everything save() pushes.
+struct State {
+  Affine transform;
+  Clip clip;
+  Paint fill_paint, stroke_paint;
+  StrokeStyle line;
+  float global_alpha = 1;
+  CompositeOp op = CompositeOp::SourceOver;
+  FillRule rule = FillRule::NonZero;
+  AntiAlias aa = AntiAlias::Analytic;
+  double tolerance = kDefaultTolerance;
+  bool smoothing = true;
+  ImageFilter filter = ImageFilter::Bilinear;
+  Shadow shadow;
+};
+
+/// Produces coverage for a device rectangle `region`, in coordinates relative to its top-left pixel, displaced
+/// by `offset` device pixels (the shadow pass draws the shape moved by the shadow offset).
+class CoverageSource {
+ public:
+  virtual ~CoverageSource() = default;
+  /// Device pixels the coverage can touch (before the offset).
+  virtual IntRect bounds() const = 0;
+  virtual void produce(const IntRect& region, Point offset, CoverageSink& sink) = 0;
+};
+
+/// An offscreen layer: pixels of `box` (channels of the canvas's type), the options to composite it with, and the
+/// state-stack depth at begin_layer().
+struct Layer {
+  IntRect box;
+  std::vector<std::uint8_t> pixels8;
+  std::vector<std::uint16_t> pixels16;
+  LayerOptions options;
+  std::size_t depth = 0;
+};
+
+}  // namespace vraster::canvas_detail
+
+namespace vraster {
+
+struct Canvas::Impl {
+  using IntRect = canvas_detail::IntRect;
+  using State = canvas_detail::State;
+
+  Image* image8 = nullptr;
+  Image16* image16 = nullptr;
+  int width = 0, height = 0;
+
+  State state;
+  std::vector<State> stack;
+  std::vector<canvas_detail::Layer> layers;
+  Path path;  // the current path, in device space
+
+  // Reused by every draw call (nothing allocates per path once they have grown).
+  Renderer renderer;  // flattening buffer + the one rasterizer
+  Compositor<std::uint8_t> compositor8;
+  Compositor<std::uint16_t> compositor16;
+  Polylines lines;                      // clip and hit-test flattening
+  canvas_detail::ArcPoints arc;         // arc points before they join the path
+  std::vector<float> row_coverage;      // ClipSink: one row of the clip region
+  std::vector<float> span_coverage;     // ClipSink: a constant span expanded for the clip mask
+  std::vector<float> mask_row;          // fill_mask: one row of the mask as floats
+  std::vector<float> plane;             // shadow alpha / blur
+  std::vector<float> plane_scratch;
+  std::vector<std::uint8_t> shadow8;    // the shape drawn alone for its shadow
+  std::vector<std::uint16_t> shadow16;
+
+  Impl(Image* i8, Image16* i16, int w, int h);
+
+  bool is16() const { return image16 != nullptr; }
+  /// The device box drawing goes to: the innermost layer's, or the canvas.
+  IntRect target_box() const;
+  template <class T>
+  ImageView<T> target_view();
+  template <class T>
+  Compositor<T>& compositor();
+
+  // ---- drawing (draw.cpp) ----
+  /// Draws `shape` with `paint` (in user space under `paint_to_device`), the state's operator, alpha, clip and
+  /// (when `with_shadow`) shadow.
+  void draw(canvas_detail::CoverageSource& shape, const Paint& paint, const Affine& paint_to_device,
+            CompositeOp op, float alpha, bool with_shadow);
+  template <class T>
+  void draw_typed(canvas_detail::CoverageSource& shape, const Paint& paint, const Affine& paint_to_device,
+                  CompositeOp op, float alpha, bool with_shadow);
+  template <class T>
+  void composite_layer(canvas_detail::Layer& layer);
+  void fill_path(const Path& path, const Affine& to_device, FillRule rule, const Paint& paint);
+  void stroke_user_path(const Path& user_path, const Affine& to_device);
+  void clip_path(const Path& path, const Affine& to_device, FillRule rule);
+  void begin_layer(const LayerOptions& options);
+  void end_layer();
+  void draw_image(const Image& image, Rect src, Rect dst);
+
+  // ---- state and path (canvas.cpp) ----
+  void restore();
+  bool has_subpath() const { return !path.empty(); }
+  /// Appends arc points (user space) to the current path: a line (or a move, for an empty path) to the first,
+  /// then the cubics. Does nothing when a mapped point is not finite.
+  void add_arc_points();
+  bool point_in(const Path& device_path, Point device_point, FillRule rule);
+};
+
+}  // namespace vraster

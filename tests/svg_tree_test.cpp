@@ -1,0 +1,313 @@
+// The resolved SVG tree (svg_subset/include/svg_subset/tree.hpp), checked without pixels: one test per feature.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "svg_subset/svg.hpp"
+#include "svg_subset/tree.hpp"
+
+namespace vraster::svg {
+namespace {
+
+Tree tree(const std::string& body, const std::string& root_attrs = "width=\"100\" height=\"100\"") {
+  return parse_svg_tree("<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" " +
+                        root_attrs + ">" + body + "</svg>");
+}
+
+const Group& group_at(const Group& g, std::size_t i) {
+  EXPECT_LT(i, g.children.size());
+  const Group* sub = std::get_if<Group>(&g.children.at(i).value);
+  EXPECT_NE(sub, nullptr) << "child " << i << " is not a group";
+  return *sub;
+}
+
+const PathNode& path_at(const Group& g, std::size_t i) {
+  EXPECT_LT(i, g.children.size());
+  const PathNode* p = std::get_if<PathNode>(&g.children.at(i).value);
+  EXPECT_NE(p, nullptr) << "child " << i << " is not a path";
+  return *p;
+}
+
+void expect_rgba(const Color& c, int r, int g, int b, double a = 1) {
+  EXPECT_NEAR(c.r * 255, r, 0.6);
+  EXPECT_NEAR(c.g * 255, g, 0.6);
+  EXPECT_NEAR(c.b * 255, b, 0.6);
+  EXPECT_NEAR(c.a, a, 1e-3);
+}
+
+void expect_affine(const Affine& m, double a, double b, double c, double d, double e, double f) {
+  EXPECT_NEAR(m.a, a, 1e-9);
+  EXPECT_NEAR(m.b, b, 1e-9);
+  EXPECT_NEAR(m.c, c, 1e-9);
+  EXPECT_NEAR(m.d, d, 1e-9);
+  EXPECT_NEAR(m.e, e, 1e-9);
+  EXPECT_NEAR(m.f, f, 1e-9);
+}
+
+TEST(SvgTree, StyleSheetCascadeAndPrecedence) {
+  const Tree t = tree(
+      "<style>rect { fill: red } .a { fill: lime } #r3 { fill: blue } g > rect { stroke: black }"
+      " rect:first-child { stroke-width: 3 } [data-x] { fill: yellow !important }</style>"
+      "<g><rect width='1' height='1' fill='green'/>"                      // type rule beats the attribute
+      "<rect class='a' width='1' height='1'/>"                            // class beats type
+      "<rect id='r3' class='a' width='1' height='1' style='fill: aqua'/>"  // style attribute beats id
+      "<rect data-x='1' width='1' height='1' style='fill: aqua'/></g>"    // !important beats style
+      "<rect width='1' height='1'/>");                                    // not a child of g: no stroke
+  const Group& g = group_at(t.root, 0);
+  ASSERT_EQ(g.children.size(), 4u);
+  expect_rgba(path_at(g, 0).fill->paint.color, 255, 0, 0);
+  expect_rgba(path_at(g, 1).fill->paint.color, 0, 255, 0);
+  expect_rgba(path_at(g, 2).fill->paint.color, 0, 255, 255);
+  expect_rgba(path_at(g, 3).fill->paint.color, 255, 255, 0);
+  ASSERT_TRUE(path_at(g, 0).stroke);
+  EXPECT_EQ(path_at(g, 0).stroke->style.width, 3);  // :first-child
+  ASSERT_TRUE(path_at(g, 1).stroke);
+  EXPECT_EQ(path_at(g, 1).stroke->style.width, 1);
+  EXPECT_FALSE(path_at(t.root, 1).stroke);
+}
+
+TEST(SvgTree, UnitsResolveToUserUnits) {
+  const Tree t = tree("<rect x='1in' y='12pt' width='25.4mm' height='50%' stroke='black' stroke-width='1pc'/>"
+                      "<circle r='2em' cx='1cm'/>",
+                      "width='200' height='100'");
+  const Rect r = path_at(t.root, 0).path.bounds();
+  EXPECT_NEAR(r.x0, 96, 1e-9);
+  EXPECT_NEAR(r.y0, 16, 1e-9);
+  EXPECT_NEAR(r.x1 - r.x0, 96, 1e-9);
+  EXPECT_NEAR(r.y1 - r.y0, 50, 1e-9);  // % of the viewport height
+  EXPECT_EQ(path_at(t.root, 0).stroke->style.width, 16);
+  const Rect c = path_at(t.root, 1).path.bounds();
+  EXPECT_NEAR(c.x1 - c.x0, 64, 1e-6);  // r = 2em at the default 16 px
+  EXPECT_NEAR((c.x0 + c.x1) / 2, 96 / 2.54, 1e-6);
+}
+
+TEST(SvgTree, ColourForms) {
+  const Tree t = tree(
+      "<rect width='1' height='1' fill='hsl(120, 100%, 25%)'/>"
+      "<rect width='1' height='1' fill='hsla(240, 100%, 50%, 0.5)'/>"
+      "<rect width='1' height='1' fill='#f008'/>"
+      "<rect width='1' height='1' fill='#11223344'/>"
+      "<rect width='1' height='1' color='rgb(10, 20, 30)' fill='currentColor'/>"
+      "<rect width='1' height='1' fill='hsl(480, 200%, 25%)'/>");
+  ASSERT_EQ(t.root.children.size(), 6u);
+  expect_rgba(path_at(t.root, 0).fill->paint.color, 0, 128, 0);
+  expect_rgba(path_at(t.root, 1).fill->paint.color, 0, 0, 255, 0.5);
+  expect_rgba(path_at(t.root, 2).fill->paint.color, 255, 0, 0, 0x88 / 255.0);
+  expect_rgba(path_at(t.root, 3).fill->paint.color, 0x11, 0x22, 0x33, 0x44 / 255.0);
+  expect_rgba(path_at(t.root, 4).fill->paint.color, 10, 20, 30);
+  expect_rgba(path_at(t.root, 5).fill->paint.color, 0, 128, 0);  // hue wraps, saturation clamps
+}
+
+TEST(SvgTree, UseIsExpandedWithTranslate) {
+  const Tree t = tree("<defs><rect id='r' width='10' height='5' fill='blue'/></defs>"
+                      "<use xlink:href='#r' x='3' y='4' transform='scale(2)' fill='red'/>");
+  ASSERT_EQ(t.root.children.size(), 1u);
+  const Group& use = group_at(t.root, 0);
+  expect_affine(use.transform, 2, 0, 0, 2, 6, 8);  // transform, then translate(x, y)
+  expect_rgba(path_at(use, 0).fill->paint.color, 0, 0, 255);
+}
+
+TEST(SvgTree, UseOfSymbolMakesAViewport) {
+  const Tree t = tree("<symbol id='s' viewBox='0 0 10 10'><rect width='10' height='10'/></symbol>"
+                      "<use href='#s' x='5' width='20' height='40'/>");
+  const Group& use = group_at(t.root, 0);
+  expect_affine(use.transform, 1, 0, 0, 1, 5, 0);
+  const Group& symbol = group_at(use, 0);
+  ASSERT_TRUE(symbol.clip);  // overflow: hidden
+  const Group& inner = group_at(symbol, 0);
+  expect_affine(inner.transform, 2, 0, 0, 2, 0, 10);  // xMidYMid meet of 10x10 into 20x40
+}
+
+TEST(SvgTree, NestedSvgViewportAndPreserveAspectRatio) {
+  const Tree t = tree("<svg x='10' y='20' width='50' height='20' viewBox='0 0 10 10' preserveAspectRatio='xMaxYMin slice'>"
+                      "<rect width='10' height='10'/></svg>"
+                      "<svg width='50' height='20' viewBox='0 0 10 10' preserveAspectRatio='none' overflow='visible'>"
+                      "<rect width='10' height='10'/></svg>");
+  const Group& a = group_at(t.root, 0);
+  ASSERT_TRUE(a.clip);
+  EXPECT_EQ(a.clip->content->children.size(), 1u);
+  expect_affine(group_at(a, 0).transform, 5, 0, 0, 5, 10, 20);  // slice: scale 5, xMax: 50 - 50 = 0 shift
+  const Group& b = group_at(t.root, 1);
+  EXPECT_FALSE(b.clip);
+  expect_affine(group_at(b, 0).transform, 5, 0, 0, 2, 0, 0);
+}
+
+TEST(SvgTree, SwitchTakesTheFirstChildThatPasses) {
+  const Tree t = tree("<switch>"
+                      "<rect systemLanguage='fr' width='1' height='1' fill='red'/>"
+                      "<rect requiredExtensions='http://example.org/x' width='1' height='1' fill='red'/>"
+                      "<rect systemLanguage='de, en-GB' width='1' height='1' fill='lime'/>"
+                      "<rect width='1' height='1' fill='blue'/></switch>");
+  const Group& s = group_at(t.root, 0);
+  ASSERT_EQ(s.children.size(), 1u);
+  expect_rgba(path_at(s, 0).fill->paint.color, 0, 255, 0);
+}
+
+TEST(SvgTree, GradientHrefChainInheritsAttributesAndStops) {
+  const Tree t = tree(
+      "<linearGradient id='base' x1='10%' x2='0.9' spreadMethod='reflect' gradientTransform='rotate(90)'>"
+      "<stop offset='0.2' stop-color='red'/><stop offset='10%' stop-color='hsl(240,100%,50%)' stop-opacity='0.5'/>"
+      "<stop offset='2' style='stop-color: lime'/></linearGradient>"
+      "<linearGradient id='child' xlink:href='#base' y2='1'/>"
+      "<radialGradient id='rad' xlink:href='#child' gradientUnits='userSpaceOnUse' cx='50' r='20' fx='40'/>"
+      "<linearGradient id='one'><stop stop-color='#123456'/></linearGradient>"
+      "<rect width='1' height='1' fill='url(#child)'/><rect width='1' height='1' fill='url(#rad)'/>"
+      "<rect width='1' height='1' fill='url(#one)'/>");
+  ASSERT_EQ(t.root.children.size(), 3u);
+  const Paint& p = path_at(t.root, 0).fill->paint;
+  ASSERT_EQ(p.kind, Paint::Kind::Gradient);
+  const Gradient& g = *p.gradient;
+  EXPECT_EQ(g.kind, Gradient::Kind::Linear);
+  EXPECT_EQ(g.units, Units::ObjectBoundingBox);
+  EXPECT_EQ(g.spread, Spread::Reflect);
+  EXPECT_NEAR(g.x1, 0.1, 1e-12);
+  EXPECT_NEAR(g.x2, 0.9, 1e-12);
+  EXPECT_NEAR(g.y2, 1, 1e-12);
+  expect_affine(g.transform, 0, 1, -1, 0, 0, 0);
+  ASSERT_EQ(g.stops.size(), 3u);
+  EXPECT_NEAR(g.stops[0].offset, 0.2, 1e-12);
+  EXPECT_NEAR(g.stops[1].offset, 0.2, 1e-12);  // never below the previous stop
+  EXPECT_NEAR(g.stops[2].offset, 1, 1e-12);    // clamped
+  expect_rgba(g.stops[1].color, 0, 0, 255, 0.5);
+  expect_rgba(g.stops[2].color, 0, 255, 0);
+  const Gradient& r = *path_at(t.root, 1).fill->paint.gradient;
+  EXPECT_EQ(r.kind, Gradient::Kind::Radial);
+  EXPECT_EQ(r.units, Units::UserSpaceOnUse);
+  EXPECT_EQ(r.spread, Spread::Reflect);  // through two links
+  EXPECT_EQ(r.cx, 50);
+  EXPECT_EQ(r.r, 20);
+  EXPECT_EQ(r.fx, 40);
+  EXPECT_EQ(r.fy, 50);  // fy defaults to cy: 50% of the viewport
+  EXPECT_EQ(r.stops.size(), 3u);
+  const Paint& one = path_at(t.root, 2).fill->paint;
+  EXPECT_EQ(one.kind, Paint::Kind::Color);  // a single stop is a solid colour
+  expect_rgba(one.color, 0x12, 0x34, 0x56);
+}
+
+TEST(SvgTree, PaintFallbacksAndMissingServers) {
+  const Tree t = tree("<rect id='notpaint' width='1' height='1'/>"
+                      "<rect width='1' height='1' fill='url(#missing) lime'/>"
+                      "<rect width='1' height='1' fill='url(#notpaint) blue' stroke='url(#missing)'/>");
+  ASSERT_EQ(t.root.children.size(), 3u);
+  expect_rgba(path_at(t.root, 1).fill->paint.color, 0, 255, 0);
+  expect_rgba(path_at(t.root, 2).fill->paint.color, 0, 0, 255);
+  EXPECT_FALSE(path_at(t.root, 2).stroke);  // a missing server without fallback is none
+}
+
+TEST(SvgTree, PatternRecord) {
+  const Tree t = tree("<pattern id='p' width='10' height='20' patternUnits='userSpaceOnUse' viewBox='0 0 1 1'>"
+                      "<rect width='1' height='1' fill='red'/></pattern>"
+                      "<pattern id='q' xlink:href='#p' patternTransform='translate(1 2)'/>"
+                      "<rect width='1' height='1' fill='url(#q)'/>");
+  const Paint& p = path_at(t.root, 0).fill->paint;
+  ASSERT_EQ(p.kind, Paint::Kind::Pattern);
+  EXPECT_EQ(p.pattern->units, Units::UserSpaceOnUse);
+  EXPECT_EQ(p.pattern->rect.x1, 10);
+  EXPECT_EQ(p.pattern->rect.y1, 20);
+  ASSERT_TRUE(p.pattern->view_box);
+  EXPECT_EQ(p.pattern->view_box->x1, 1);
+  expect_affine(p.pattern->transform, 1, 0, 0, 1, 1, 2);
+  ASSERT_EQ(p.pattern->content->children.size(), 1u);  // the content comes through the href chain
+}
+
+TEST(SvgTree, ClipPathAndMaskRecords) {
+  const Tree t = tree("<clipPath id='c' clipPathUnits='objectBoundingBox' transform='scale(2)'>"
+                      "<rect width='1' height='1' clip-rule='evenodd'/></clipPath>"
+                      "<mask id='m' maskUnits='userSpaceOnUse' x='1' y='2' width='3' height='4' mask-type='alpha'>"
+                      "<rect width='1' height='1' fill='white'/></mask>"
+                      "<rect width='5' height='5' clip-path='url(#c)' mask='url(#m)' opacity='0.5'/>");
+  const Group& g = group_at(t.root, 0);
+  EXPECT_FLOAT_EQ(g.opacity, 0.5f);
+  EXPECT_TRUE(g.needs_layer());
+  ASSERT_TRUE(g.clip);
+  EXPECT_EQ(g.clip->units, Units::ObjectBoundingBox);
+  expect_affine(g.clip->transform, 2, 0, 0, 2, 0, 0);
+  ASSERT_EQ(g.clip->content->children.size(), 1u);
+  ASSERT_TRUE(g.mask);
+  EXPECT_EQ(g.mask->units, Units::UserSpaceOnUse);
+  EXPECT_FALSE(g.mask->luminance);
+  EXPECT_EQ(g.mask->rect.x0, 1);
+  EXPECT_EQ(g.mask->rect.y1, 6);
+}
+
+TEST(SvgTree, ClipPathReferenceLoopClipsEverything) {
+  const Tree t = tree("<clipPath id='c'><rect width='1' height='1' clip-path='url(#c)'/></clipPath>"
+                      "<rect width='5' height='5' clip-path='url(#c)'/>");
+  const Group& g = group_at(t.root, 0);
+  ASSERT_TRUE(g.clip);
+  EXPECT_EQ(g.clip->content, nullptr);
+  EXPECT_TRUE(to_document(t).items.empty());
+  ASSERT_FALSE(t.warnings.empty());
+  EXPECT_NE(t.warnings[0].find("reference loop"), std::string::npos) << t.warnings[0];
+}
+
+TEST(SvgTree, UseLoopsAreSkippedWithAWarning) {
+  const Tree t = tree("<use id='u' xlink:href='#u'/><g id='g'><use xlink:href='#g'/></g>"
+                      "<use id='a' href='#b'/><use id='b' href='#a'/><rect width='1' height='1'/>");
+  // The drawable rect survives; every looping use is dropped.
+  EXPECT_EQ(to_document(t).items.size(), 1u);
+  EXPECT_GE(t.warnings.size(), 3u);
+}
+
+TEST(SvgTree, BillionLaughsOfUsesStops) {
+  std::string body = "<rect id='l0' width='1' height='1'/>";
+  for (int i = 1; i <= 9; ++i) {
+    body += "<g id='l" + std::to_string(i) + "'>";
+    for (int k = 0; k < 10; ++k) body += "<use href='#l" + std::to_string(i - 1) + "'/>";
+    body += "</g>";
+  }
+  try {
+    tree(body);
+    FAIL() << "no error";
+  } catch (const ParseError& e) {
+    EXPECT_NE(e.message().find("too many <use> instances"), std::string::npos) << e.what();
+    EXPECT_GT(e.line(), 0);
+  }
+}
+
+TEST(SvgTree, ForeignNamespacesAreSkippedSilently) {
+  const Tree t = parse_svg_tree(
+      "<svg xmlns='http://www.w3.org/2000/svg' xmlns:inkscape='http://www.inkscape.org/namespaces/inkscape' "
+      "xmlns:sodipodi='http://sodipodi.sourceforge.net/DTD/sodipodi-0.dtd' "
+      "xmlns:rdf='http://www.w3.org/1999/02/22-rdf-syntax-ns#' width='10' height='10'>"
+      "<sodipodi:namedview inkscape:zoom='1'/><metadata><rdf:RDF><rdf:Description/></rdf:RDF></metadata>"
+      "<g inkscape:label='Layer 1' inkscape:groupmode='layer'><rect width='1' height='1'/></g></svg>");
+  EXPECT_TRUE(t.warnings.empty()) << t.warnings[0];
+  EXPECT_EQ(to_document(t).items.size(), 1u);
+}
+
+TEST(SvgTree, SvgNamespacePrefix) {
+  const Tree t = parse_svg_tree("<svg:svg xmlns:svg='http://www.w3.org/2000/svg' width='10' height='10'>"
+                                "<svg:rect width='1' height='1'/></svg:svg>");
+  EXPECT_EQ(t.root.children.size(), 1u);
+}
+
+TEST(SvgTree, DisplayVisibilityAndPaintOrder) {
+  const Tree t = tree("<g display='none'><rect width='1' height='1'/></g>"
+                      "<g visibility='hidden'><rect width='1' height='1'/><rect visibility='visible' width='1' height='1'"
+                      " stroke='red' paint-order='stroke' shape-rendering='crispEdges'/></g>");
+  ASSERT_EQ(t.root.children.size(), 1u);
+  const Group& g = group_at(t.root, 0);
+  ASSERT_EQ(g.children.size(), 1u);
+  EXPECT_TRUE(path_at(g, 0).stroke_first);
+  EXPECT_TRUE(path_at(g, 0).crisp_edges);
+}
+
+TEST(SvgTree, InvalidValuesAreAsIfNotGiven) {
+  const Tree t = tree("<g fill='red' stroke-width='3'>"
+                      "<polygon points='0 0 10 0 10 10 5' fill='bad' stroke='blue' stroke-width='2mmx' opacity='0.1mm'"
+                      " stroke-linecap='miter'/><path d='M 0 0 L 10 0 A 5 5 0 -1 0 1 1'/></g>");
+  const Group& g = group_at(t.root, 0);
+  ASSERT_EQ(g.children.size(), 2u);
+  const PathNode& poly = path_at(g, 0);
+  expect_rgba(poly.fill->paint.color, 255, 0, 0);
+  EXPECT_EQ(poly.stroke->style.width, 3);
+  EXPECT_EQ(poly.stroke->style.cap, LineCap::Butt);
+  const Rect b = poly.path.bounds();
+  EXPECT_EQ(b.y1, 10);  // the odd coordinate is dropped
+  EXPECT_EQ(path_at(g, 1).path.verbs().size(), 2u);  // drawn up to the bad arc flag: M L
+  EXPECT_EQ(t.warnings.size(), 6u);
+}
+
+}  // namespace
+}  // namespace vraster::svg
