@@ -10,6 +10,7 @@
 //      user space, so a non-uniform transform scales the stroke as SVG does).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 #include <vector>
@@ -64,8 +65,13 @@ DashVerdict check_dashes(const Path& path, const std::vector<double>& dashes);
 /// boundary (curves flattened at tolerance/2, round joins and caps with chord error <= tolerance/2).
 /// Zero-length subpaths (`M x y L x y`, `M x y Z`) give a dot with round or square caps (square aligned with
 /// the x axis) and nothing with butt caps; a lone `M x y` gives nothing.
-/// Never throws for a valid Path; returns an empty path for an invisible style.
+/// Returns an empty path for an invisible style. Throws vraster::Error when the outline would need more than
+/// kMaxStrokeOutlinePoints points (a stroke vastly wider than the tolerance on a long curve).
 Path stroke_to_path(const Path& path, const StrokeStyle& style, double tolerance);
+
+/// Most points one stroke outline may have (2^22, 64 MiB of points); see stroke_to_path. Renderer::stroke
+/// outlines only the geometry that can reach the device area, so the limit applies to what is visible.
+inline constexpr std::size_t kMaxStrokeOutlinePoints = std::size_t{1} << 22;
 
 /// The user-space tolerance that gives `device_tolerance` after `transform` (divides by the largest scale).
 double user_tolerance(const Affine& transform, double device_tolerance);
