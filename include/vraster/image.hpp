@@ -21,7 +21,7 @@ struct Color {
 
 /// Largest accepted image side and pixel count (bigger requests throw vraster::Error).
 inline constexpr int kMaxImageSide = 1 << 15;
-inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 28;
+inline constexpr std::int64_t kMaxImagePixels = std::int64_t{1} << 26;  // 8192 x 8192: 256 MiB at 8 bits, 512 MiB at 16
 
 /// An RGBA image with premultiplied channels of type T (uint8_t: 8 bits, uint16_t: 16 bits per channel),
 /// stored row by row, 4 channels a pixel, no padding.
