@@ -90,14 +90,23 @@ struct PathNode {
   std::optional<Stroke> stroke;
   bool stroke_first = false;  ///< paint-order: stroke before fill
   bool crisp_edges = false;   ///< shape-rendering: crispEdges / optimizeSpeed (draw aliased)
+  /// The box that objectBoundingBox units of this node's paint servers refer to, when it is not the path's own
+  /// bounding box (text: the whole text element's box, while the path holds one chunk of glyphs).
+  std::optional<Rect> paint_box;
   int line = 0, column = 0;   ///< where the element starts in the file
 };
 
-/// An <image>: what to draw and where (user units). Drawing waits for the image decoders.
+/// A raster <image>, decoded and placed: its pixels drawn into `dest` (user units of the parent group, after
+/// preserveAspectRatio), clipped to `clip` (the element's x/y/width/height viewport). An <image> that refers to
+/// an SVG document becomes a Group instead (the document's root, with its viewport transform and clip).
 struct ImageNode {
   std::string id;
   std::string href;
-  Rect view;
+  std::shared_ptr<const Image> image;  ///< premultiplied RGBA8; null: nothing to draw (missing or undecodable)
+  Rect view;                           ///< x, y, x + width, y + height of the element
+  Rect dest;                           ///< where the whole image lands (preserveAspectRatio applied)
+  Rect clip;                           ///< the viewport rectangle (same as view)
+  bool smooth = true;                  ///< image-rendering: false for optimizeSpeed / pixelated / crisp-edges
   int line = 0, column = 0;
 };
 
