@@ -5,8 +5,10 @@
 #include <string>
 
 #include "svg_subset/svg.hpp"
+#include "vraster/canvas.hpp"
 #include "vraster/error.hpp"
 #include "vraster/image.hpp"
+#include "vraster/stroke.hpp"
 
 using namespace vraster;
 
@@ -28,4 +30,41 @@ TEST(FuzzRegression, HugeFiniteImageSizeIsReportedWithoutOverflow) {
   }
   EXPECT_THROW(check_image_size(1e300, 1e300), Error);
   EXPECT_NO_THROW(check_image_size(kMaxImageSide, 1));
+}
+
+// fuzz_canvas: a stroke through points near the double range (a scale of 1e300, then points of +-480) overflowed
+// the segment directions to NaN, and the round join's segment count cast NaN to int (UBSan). Such pieces are
+// dropped now; the outline never holds a non-finite point and the call does not throw.
+TEST(FuzzRegression, StrokeOfPointsNearTheDoubleRangeStaysFinite) {
+  StrokeStyle style;
+  style.width = 4;
+  style.join = LineJoin::Round;
+  style.cap = LineCap::Round;
+  Path far;
+  far.move_to({-1.5e308, 0});
+  far.line_to({1.5e308, 1});
+  far.line_to({1e308, 1e308});
+  far.line_to({-1e308, 3});
+  Path outline;
+  ASSERT_NO_THROW(outline = stroke_to_path(far, style, 0.1));
+  for (const Point& p : outline.points()) EXPECT_TRUE(is_finite(p)) << p.x << ", " << p.y;
+
+  // The same through the canvas, with an ordinary segment after it: that one still draws.
+  Image image(16, 16);
+  Canvas canvas(image);
+  canvas.set_line_width(2);
+  canvas.set_stroke_color(Color{0, 0, 0, 1});
+  canvas.scale(1e300, 1e300);
+  canvas.begin_path();
+  canvas.move_to(-200, 0);
+  canvas.line_to(200, 1e-300);
+  canvas.line_to(-100, 100);
+  ASSERT_NO_THROW(canvas.stroke());
+  canvas.set_transform(Affine{});
+  canvas.begin_path();
+  canvas.move_to(2, 8);
+  canvas.line_to(14, 8);
+  ASSERT_NO_THROW(canvas.stroke());
+  EXPECT_EQ(image.pixel(8, 8)[3], 255);
+  EXPECT_EQ(image.pixel(8, 2)[3], 0);
 }

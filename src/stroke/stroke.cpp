@@ -43,6 +43,7 @@ Point rotate(Point v, double a) {
 // Number of chords for an arc of radius r and angle |sweep| with chord error <= tol.
 int arc_segments(double r, double sweep, double tol) {
   sweep = std::fabs(sweep);
+  if (!(sweep <= 2 * kPi)) return sweep > 2 * kPi ? kMaxArcSegments : 1;  // NaN sweeps come from overflowed input
   if (!(r > tol)) return std::max(1, static_cast<int>(std::ceil(sweep / (kPi / 2))));
   const double step = 2 * std::acos(1 - tol / r);
   const double n = std::ceil(sweep / step);
@@ -213,10 +214,14 @@ class Outliner {
     dirs_.resize(segs);
     lens_.resize(segs);
     for (std::size_t i = 0; i < segs; ++i) {
-      const Point d = pl.points[(i + 1) % n] - pl.points[i];
-      const double len = length(d);
-      lens_[i] = len;
-      dirs_[i] = len > 0 ? d * (1 / len) : Point{1, 0};
+      const Point a = pl.points[i], b = pl.points[(i + 1) % n];
+      Point d = b - a;
+      // Far-apart finite points (|x| near 1e308) overflow the difference or its square: halve both first.
+      const bool halved = !is_finite(d) || !std::isfinite(d.x * d.x + d.y * d.y);
+      if (halved) d = b * 0.5 - a * 0.5;
+      const double len = std::hypot(d.x, d.y);
+      lens_[i] = halved ? 2 * len : len;
+      dirs_[i] = len > 0 && std::isfinite(len) ? d * (1 / len) : Point{1, 0};
     }
     left_.clear();
     right_.clear();
@@ -324,6 +329,10 @@ class Outliner {
   // Emits pts as a closed contour.
   void emit(const std::vector<Point>& pts) {
     if (pts.size() < 2) return;
+    // A contour that overflowed (input within a pen width of the double range) is dropped, not thrown.
+    for (const Point& p : pts) {
+      if (!is_finite(p)) return;
+    }
     emitted_ += pts.size();
     if (emitted_ > kMaxStrokeOutlinePoints) throw_outline_too_big();
     out_.move_to(pts[0]);
