@@ -48,11 +48,18 @@ struct Shadow {
   double blur = 0;
 };
 
+struct Scene;
+struct ScenePlan;
+
 class Canvas {
  public:
   /// Draws onto `target` (which must outlive the canvas). 16-bit targets get 16-bit paint and compositing.
   explicit Canvas(Image& target);
   explicit Canvas(Image16& target);
+  /// Records into `scene` (which must outlive the canvas; its width and height are the canvas size, 1 to
+  /// kMaxImageSide each) instead of drawing: every draw call is appended with the state it needs
+  /// (vraster/scene.hpp). get_pixels() reads transparent pixels while recording.
+  explicit Canvas(Scene& recording);
   ~Canvas();
   Canvas(Canvas&&) noexcept;
   Canvas& operator=(Canvas&&) noexcept;
@@ -161,6 +168,12 @@ class Canvas {
   void put_pixels(const Image& pixels, int x, int y);
   /// FXAA over the target (a post-filter: call it when the drawing is done).
   void apply_fxaa();
+
+  // ---- scenes (vraster/scene.hpp) ----
+  /// Replays a recorded scene in device space (its recorded transforms are used as they are), under this canvas's
+  /// clip; every call the plan culls is skipped and every change it made is applied. Without a plan, every call
+  /// is replayed as recorded. The canvas state is left as it was.
+  void draw_scene(const Scene& scene, const ScenePlan* plan = nullptr);
 
   // ---- hit testing (user coordinates mapped by the current transform) ----
   bool is_point_in_path(double x, double y) const;

@@ -115,6 +115,11 @@ void Canvas::Impl::add_arc_points() {
 
 Canvas::Canvas(Image& target) : impl_(std::make_unique<Impl>(&target, nullptr, target.width, target.height)) {}
 Canvas::Canvas(Image16& target) : impl_(std::make_unique<Impl>(nullptr, &target, target.width, target.height)) {}
+Canvas::Canvas(Scene& recording) {
+  check_image_size(recording.width, recording.height);
+  impl_ = std::make_unique<Impl>(nullptr, nullptr, recording.width, recording.height);
+  impl_->recording = &recording;
+}
 Canvas::~Canvas() = default;
 Canvas::Canvas(Canvas&&) noexcept = default;
 Canvas& Canvas::operator=(Canvas&&) noexcept = default;
@@ -427,6 +432,7 @@ Image Canvas::get_pixels(int x, int y, int w, int h) const {
   Image out(w, h);
   std::fill(out.data.begin(), out.data.end(), std::uint8_t{0});
   const Impl& s = *impl_;
+  if (s.recording) return out;
   const IntRect area = IntRect{x, y, x + w, y + h}.intersect({0, 0, s.width, s.height});
   for (int py = area.y0; py < area.y1; ++py) {
     std::uint8_t* dst = out.pixel(area.x0 - x, py - y);
@@ -442,7 +448,14 @@ Image Canvas::get_pixels(int x, int y, int w, int h) const {
 }
 
 void Canvas::put_pixels(const Image& pixels, int x, int y) {
-  const Impl& s = *impl_;
+  Impl& s = *impl_;
+  if (s.recording) {
+    SceneCommand& c = s.record(SceneCommand::Kind::PutPixels);
+    c.image = std::make_shared<const Image>(pixels);
+    c.x = x;
+    c.y = y;
+    return;
+  }
   const IntRect area =
       IntRect{x, y, x + pixels.width, y + pixels.height}.intersect({0, 0, s.width, s.height});
   for (int py = area.y0; py < area.y1; ++py) {
@@ -458,7 +471,9 @@ void Canvas::put_pixels(const Image& pixels, int x, int y) {
 }
 
 void Canvas::apply_fxaa() {
-  if (impl_->image8) {
+  if (impl_->recording) {
+    impl_->record(SceneCommand::Kind::Fxaa);
+  } else if (impl_->image8) {
     fxaa(*impl_->image8);
   } else {
     fxaa(*impl_->image16);

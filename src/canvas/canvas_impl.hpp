@@ -14,6 +14,7 @@
 #include "canvas/arcs.hpp"
 #include "vraster/canvas.hpp"
 #include "vraster/renderer.hpp"
+#include "vraster/scene.hpp"
 
 namespace vraster::canvas_detail {
 
@@ -60,6 +61,7 @@ struct State {
   bool smoothing = true;
   ImageFilter filter = ImageFilter::Bilinear;
   Shadow shadow;
+  std::shared_ptr<const SceneClip> recorded_clip;  // recording: the clips in force, as geometry
 };
 
 /// Produces coverage for a device rectangle `region`, in coordinates relative to its top-left pixel, displaced
@@ -94,6 +96,7 @@ struct Canvas::Impl {
   Image16* image16 = nullptr;
   int width = 0, height = 0;
 
+  Scene* recording = nullptr;  // set: draw calls are appended here instead of drawn (record.cpp)
   State state;
   std::vector<State> stack;
   std::vector<canvas_detail::Layer> layers;
@@ -137,8 +140,12 @@ struct Canvas::Impl {
   void stroke_user_path(const Path& user_path, const Affine& to_device);
   void clip_path(const Path& path, const Affine& to_device, FillRule rule);
   void begin_layer(const LayerOptions& options);
-  void end_layer();
+  void end_layer(bool composite = true);  ///< false: the layer is dropped without a trace
   void draw_image(const Image& image, Rect src, Rect dst);
+
+  // ---- recording (record.cpp) ----
+  /// Appends a command of `kind` with the current state (and clips) to the recording.
+  SceneCommand& record(SceneCommand::Kind kind);
 
   // ---- state and path (canvas.cpp) ----
   void restore();

@@ -281,12 +281,26 @@ void Canvas::Impl::draw(CoverageSource& shape, const Paint& paint, const Affine&
 
 void Canvas::Impl::fill_path(const Path& p, const Affine& to_device, FillRule rule, const Paint& paint) {
   if (p.empty()) return;
+  if (recording) {
+    SceneCommand& c = record(SceneCommand::Kind::Fill);
+    c.path = p;
+    c.to_device = to_device;
+    c.rule = rule;
+    c.state.fill_paint = paint;
+    return;
+  }
   PathSource shape(renderer, p, to_device, rule, state.aa, state.tolerance);
   draw(shape, paint, state.transform, state.op, state.global_alpha, true);
 }
 
 void Canvas::Impl::stroke_user_path(const Path& user_path, const Affine& to_device) {
   if (user_path.empty()) return;
+  if (recording) {
+    SceneCommand& c = record(SceneCommand::Kind::Stroke);
+    c.path = user_path;
+    c.to_device = to_device;
+    return;
+  }
   // Strokes are geometry: the outline (user space, so a non-uniform transform shapes the pen as on the canvas)
   // is filled non-zero through the same pipeline as fills. Strokes thinner than a pixel stay geometric outlines
   // (as in Cairo and Skia): their coverage is their area, so they fade instead of vanishing or turning into
@@ -341,6 +355,11 @@ bool pixel_aligned_rectangle(const Polylines& lines, IntRect& box, int& winding)
 }  // namespace
 
 void Canvas::Impl::clip_path(const Path& p, const Affine& to_device, FillRule rule) {
+  if (recording) {
+    state.recorded_clip = std::make_shared<const SceneClip>(
+        SceneClip{p, to_device, rule, state.aa, state.tolerance, state.recorded_clip});
+    return;
+  }
   Clip& clip = state.clip;
   if (clip.box.empty()) return;  // nothing left to clip
   lines.clear();
@@ -408,12 +427,13 @@ void Canvas::Impl::clip_path(const Path& p, const Affine& to_device, FillRule ru
 // ---- layers ----
 
 void Canvas::Impl::begin_layer(const LayerOptions& options) {
+  if (recording) record(SceneCommand::Kind::BeginLayer).layer = options;
   stack.push_back(state);
   canvas_detail::Layer layer;
   layer.box = state.clip.box.intersect(target_box());
   layer.options = options;
   layer.depth = stack.size();
-  if (!layer.box.empty()) {
+  if (!layer.box.empty() && !recording) {
     const std::size_t n = static_cast<std::size_t>(layer.box.width()) * layer.box.height() * 4;
     if (is16()) {
       layer.pixels16.assign(n, 0);
@@ -495,15 +515,16 @@ void Canvas::Impl::composite_layer(canvas_detail::Layer& layer) {
   }
 }
 
-void Canvas::Impl::end_layer() {
+void Canvas::Impl::end_layer(bool composite) {
   if (layers.empty()) return;
+  if (recording) record(SceneCommand::Kind::EndLayer);
   canvas_detail::Layer layer = std::move(layers.back());
   layers.pop_back();
   // Back to the state begin_layer() saved (it has the clip the layer is composited through).
   stack.resize(layer.depth);
   state = std::move(stack.back());
   stack.pop_back();
-  if (layer.box.empty() && is_bounded(layer.options.op)) return;
+  if (!composite || recording || (layer.box.empty() && is_bounded(layer.options.op))) return;
   if (is16()) {
     composite_layer<std::uint16_t>(layer);
   } else {
@@ -514,6 +535,13 @@ void Canvas::Impl::end_layer() {
 // ---- images ----
 
 void Canvas::Impl::draw_image(const Image& image, Rect src, Rect dst) {
+  if (recording) {
+    SceneCommand& c = record(SceneCommand::Kind::DrawImage);
+    c.image = std::make_shared<const Image>(image);
+    c.src = src;
+    c.dst = dst;
+    return;
+  }
   // Normalise negative sizes, then clip the source rectangle to the image, shrinking the destination with it.
   auto normalise = [](Rect& r) {
     if (r.x1 < r.x0) std::swap(r.x0, r.x1);
@@ -547,6 +575,22 @@ namespace vraster {
 void Canvas::fill_mask(const std::uint8_t* mask, int width, int height, std::ptrdiff_t stride, int x, int y) {
   if (!mask || width <= 0 || height <= 0 || stride < width) return;
   Impl& s = *impl_;
+  if (s.recording) {
+    // The coverage goes into the alpha of an image (the scene keeps one kind of pixel buffer).
+    auto copy = std::make_shared<Image>(width, height);
+    for (int row = 0; row < height; ++row) {
+      for (int col = 0; col < width; ++col) {
+        std::uint8_t* px = copy->pixel(col, row);
+        px[0] = px[1] = px[2] = 0;
+        px[3] = mask[row * stride + col];
+      }
+    }
+    SceneCommand& c = s.record(SceneCommand::Kind::FillMask);
+    c.image = std::move(copy);
+    c.x = x;
+    c.y = y;
+    return;
+  }
   MaskSource shape(mask, width, height, stride, x, y, s.mask_row);
   s.draw(shape, s.state.fill_paint, s.state.transform, s.state.op, s.state.global_alpha, true);
 }

@@ -1,0 +1,161 @@
+// Scenes on the canvas: recording draw calls (Canvas(Scene&)) and replaying them (Canvas::draw_scene).
+//
+// Recording keeps clips as geometry: each clip() links a SceneClip node to the ones in force, and save/restore
+// carry that link in the state, so every command knows its clip chain without a stack of its own. Replaying
+// turns chains back into clips: the clips a command needs that are not in force yet are pushed one per save(),
+// and the ones it does not need are popped with restore(), so consecutive commands under the same clips share
+// one clip mask.
+#include <algorithm>
+
+#include "canvas/canvas_impl.hpp"
+#include "vraster/error.hpp"
+
+namespace vraster {
+
+SceneCommand& Canvas::Impl::record(SceneCommand::Kind kind) {
+  SceneCommand c;
+  c.kind = kind;
+  const State& s = state;
+  c.state = SceneState{s.transform, s.fill_paint, s.stroke_paint, s.line,      s.global_alpha, s.op,
+                       s.rule,      s.aa,         s.tolerance,    s.smoothing, s.filter,       s.shadow};
+  c.clip = s.recorded_clip;
+  recording->commands.push_back(std::move(c));
+  return recording->commands.back();
+}
+
+namespace {
+
+/// The clip chain from `node` back to `base` (exclusive), outermost first.
+std::vector<const SceneClip*> chain_above(const SceneClip* node, const SceneClip* base) {
+  std::vector<const SceneClip*> out;
+  for (; node && node != base; node = node->parent.get()) out.push_back(node);
+  std::reverse(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+void Canvas::draw_scene(const Scene& scene, const ScenePlan* plan) {
+  Impl& s = *impl_;
+  if (s.recording) {  // recording a replay: the commands are appended as they are
+    for (const SceneCommand& c : scene.commands) s.recording->commands.push_back(c);
+    return;
+  }
+  if (plan && plan->decisions.size() != scene.commands.size()) {
+    throw Error("draw_scene: the plan was made for another scene");
+  }
+  // One level per layer being replayed (and one for the scene itself): the clip nodes pushed since it started,
+  // each with its own save(), above the chain in force when it started.
+  struct Level {
+    const SceneClip* base = nullptr;
+    std::vector<const SceneClip*> applied;
+    bool layer = false;  // a real layer (end_layer() pops it) rather than a dropped one
+  };
+  std::vector<Level> levels(1);
+  save();
+  auto pop_clips = [&](Level& level) {
+    for (std::size_t i = 0; i < level.applied.size(); ++i) restore();
+    level.applied.clear();
+  };
+  auto use_clip = [&](const SceneClip* chain) {
+    Level& level = levels.back();
+    const std::vector<const SceneClip*> wanted = chain_above(chain, level.base);
+    std::size_t same = 0;
+    while (same < wanted.size() && same < level.applied.size() && wanted[same] == level.applied[same]) ++same;
+    while (level.applied.size() > same) {
+      restore();
+      level.applied.pop_back();
+    }
+    for (std::size_t i = same; i < wanted.size(); ++i) {
+      const SceneClip& clip = *wanted[i];
+      save();
+      s.state.aa = clip.aa;
+      s.state.tolerance = clip.tolerance;
+      s.clip_path(clip.path, clip.to_device, clip.rule);
+      level.applied.push_back(&clip);
+    }
+  };
+  auto use_state = [&](const SceneState& r, const PlanDecision* d) {
+    Impl::State& st = s.state;
+    st.transform = r.transform;
+    st.fill_paint = r.fill_paint;
+    st.stroke_paint = r.stroke_paint;
+    st.line = r.line;
+    st.global_alpha = d ? r.global_alpha * d->alpha_scale : r.global_alpha;
+    st.op = r.op;
+    st.rule = r.rule;
+    st.aa = d && d->aliased ? AntiAlias::None : r.aa;
+    st.tolerance = r.tolerance;
+    st.smoothing = r.smoothing;
+    st.filter = r.filter;
+    st.shadow = r.shadow;
+  };
+
+  for (std::size_t i = 0; i < scene.commands.size(); ++i) {
+    const SceneCommand& c = scene.commands[i];
+    const PlanDecision* d = plan ? &plan->decisions[i] : nullptr;
+    if (d && d->action == PlanDecision::Action::Cull) continue;  // a culled layer has every command inside culled
+    switch (c.kind) {
+      case SceneCommand::Kind::BeginLayer: {
+        use_clip(c.clip.get());
+        const bool dropped = d && d->action == PlanDecision::Action::DropLayer;
+        if (!dropped) {
+          use_state(c.state, d);
+          begin_layer(c.layer);
+        }
+        levels.push_back(Level{c.clip.get(), {}, !dropped});
+        break;
+      }
+      case SceneCommand::Kind::EndLayer: {
+        if (levels.size() < 2) break;  // unbalanced: the recording canvas ignored it too
+        Level& level = levels.back();
+        pop_clips(level);
+        const bool layer = level.layer;
+        levels.pop_back();
+        if (layer) end_layer();
+        break;
+      }
+      case SceneCommand::Kind::Fill:
+        use_clip(c.clip.get());
+        use_state(c.state, d);
+        s.fill_path(c.path, c.to_device, c.rule, s.state.fill_paint);
+        break;
+      case SceneCommand::Kind::Stroke:
+        use_clip(c.clip.get());
+        use_state(c.state, d);
+        s.stroke_user_path(c.path, c.to_device);
+        break;
+      case SceneCommand::Kind::DrawImage:
+        use_clip(c.clip.get());
+        use_state(c.state, d);
+        if (c.image) s.draw_image(*c.image, c.src, c.dst);
+        break;
+      case SceneCommand::Kind::FillMask: {
+        if (!c.image) break;
+        use_clip(c.clip.get());
+        use_state(c.state, d);
+        std::vector<std::uint8_t> coverage(static_cast<std::size_t>(c.image->width) * c.image->height);
+        for (std::size_t k = 0; k < coverage.size(); ++k) coverage[k] = c.image->data[k * 4 + 3];
+        fill_mask(coverage.data(), c.image->width, c.image->height, c.image->width, c.x, c.y);
+        break;
+      }
+      case SceneCommand::Kind::PutPixels:
+        if (c.image) put_pixels(*c.image, c.x, c.y);
+        break;
+      case SceneCommand::Kind::Fxaa:
+        apply_fxaa();
+        break;
+    }
+  }
+  // A layer the scene never ended never shows (as on the canvas it was recorded from): it is discarded.
+  while (levels.size() > 1) {
+    pop_clips(levels.back());
+    const bool layer = levels.back().layer;
+    levels.pop_back();
+    if (layer) s.end_layer(/*composite=*/false);
+  }
+  pop_clips(levels.back());
+  restore();
+}
+
+}  // namespace vraster

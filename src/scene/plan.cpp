@@ -1,0 +1,710 @@
+// The scene planner: one pass to find each command's device box and layer structure, one pass backwards for
+// occlusion, one pass over each layer for what it really needs. Every rule below keeps the picture as it is
+// (up to rounding): a rule that cannot prove that for a command leaves the command alone.
+//
+//   culled       box empty (outside the canvas or its clip); invisible (alpha 0 or a transparent paint with an
+//                operator that leaves the destination alone); a fill of zero area; hidden (every pixel it can
+//                change is overwritten later, in the same layer, by an opaque pixel-aligned rectangle, a `copy`
+//                or `clear`, or put_pixels, with no post-filter in between); a layer with nothing left to draw
+//   aliased      a fill that is a rectangle with whole-pixel corners: antialiasing computes 0 or 1 anyway
+//   layers       opacity 1, source-over, no mask, clipped only by pixel-aligned rectangles, and only source-over
+//                drawing inside: dropped (source-over is associative); the same with opacity < 1 whose children
+//                touch disjoint pixels and cast no shadow: dropped, the opacity folded into each child's alpha
+//   tiles        the 64 x 64 tiles that some kept command can change
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <unordered_map>
+
+#include "vraster/scene.hpp"
+
+namespace vraster {
+namespace {
+
+using Kind = SceneCommand::Kind;
+using Action = PlanDecision::Action;
+using Reason = PlanReason;
+
+PixelBox intersect(const PixelBox& a, const PixelBox& b) {
+  PixelBox r{std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
+  return r.empty() ? PixelBox{} : r;
+}
+
+PixelBox unite(const PixelBox& a, const PixelBox& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+}
+
+bool contains(const PixelBox& outer, const PixelBox& inner) {
+  return inner.x0 >= outer.x0 && inner.y0 >= outer.y0 && inner.x1 <= outer.x1 && inner.y1 <= outer.y1;
+}
+
+/// The pixels a device rectangle can touch, grown by `margin` pixels; a box that is not finite is "everywhere".
+PixelBox touching(const Rect& r, double margin, const PixelBox& everywhere) {
+  if (!std::isfinite(r.x0) || !std::isfinite(r.y0) || !std::isfinite(r.x1) || !std::isfinite(r.y1)) {
+    return everywhere;
+  }
+  constexpr double kLimit = 1 << 30;
+  auto lo = [&](double v) { return static_cast<int>(std::clamp(std::floor(v - margin), -kLimit, kLimit)); };
+  auto hi = [&](double v) { return static_cast<int>(std::clamp(std::ceil(v + margin), -kLimit, kLimit)); };
+  return {lo(r.x0), lo(r.y0), hi(r.x1), hi(r.y1)};
+}
+
+/// The device box of a path's control points (the curves lie inside it); false when it has no points.
+bool device_box(const Path& path, const Affine& m, Rect& out) {
+  const auto pts = path.points();
+  if (pts.empty()) return false;
+  out = Rect::from_point(m.apply(pts[0]));
+  for (const Point& p : pts) out.include(m.apply(p));
+  return true;
+}
+
+/// Whether `path` mapped by `m` is one axis-aligned rectangle (move, three or four lines, optional close).
+bool device_rectangle(const Path& path, const Affine& m, Rect& out) {
+  const auto verbs = path.verbs();
+  const auto pts = path.points();
+  std::size_t n = verbs.size();
+  if (n > 0 && verbs[n - 1] == Verb::Close) --n;
+  if (n < 4 || n > 5 || verbs[0] != Verb::Move) return false;
+  for (std::size_t i = 1; i < n; ++i) {
+    if (verbs[i] != Verb::Line) return false;
+  }
+  Point c[5];
+  for (std::size_t i = 0; i < n; ++i) c[i] = m.apply(pts[i]);
+  if (n == 5 && !(c[4] == c[0])) return false;
+  for (int i = 0; i < 4; ++i) {
+    const Point a = c[i], b = c[(i + 1) % 4];
+    if (!is_finite(a)) return false;
+    const bool horizontal = a.y == b.y, vertical = a.x == b.x;
+    if (horizontal == vertical) return false;  // diagonal, or a repeated point
+    const bool first_horizontal = c[0].y == c[1].y;
+    if (horizontal != (first_horizontal == (i % 2 == 0))) return false;  // sides must alternate
+  }
+  out = Rect::from_point(c[0]);
+  for (int i = 1; i < 4; ++i) out.include(c[i]);
+  return !out.empty();
+}
+
+bool whole(double v) { return v == std::round(v); }
+
+/// The whole pixels a rectangle covers completely.
+PixelBox interior(const Rect& r) {
+  constexpr double kLimit = 1 << 30;
+  auto clamp = [&](double v) { return static_cast<int>(std::clamp(v, -kLimit, kLimit)); };
+  PixelBox b{clamp(std::ceil(r.x0)), clamp(std::ceil(r.y0)), clamp(std::floor(r.x1)), clamp(std::floor(r.y1))};
+  return b.empty() ? PixelBox{} : b;
+}
+
+/// The largest factor a transform stretches a length by.
+double max_scale(const Affine& m) {
+  const double s1 = m.a * m.a + m.b * m.b + m.c * m.c + m.d * m.d;
+  const double det = m.a * m.d - m.b * m.c;
+  return std::sqrt(s1 / 2 + std::sqrt(std::max(0.0, s1 * s1 / 4 - det * det)));
+}
+
+bool casts_shadow(const SceneState& s) {
+  return s.shadow.color.a > 0 && (s.shadow.blur > 0 || s.shadow.offset_x != 0 || s.shadow.offset_y != 0);
+}
+
+/// Operators for which a source pixel of alpha 1 and full coverage gives the source (the destination is lost).
+bool opaque_source_replaces(CompositeOp op) { return op == CompositeOp::SourceOver || op == CompositeOp::Copy; }
+
+class Planner {
+ public:
+  Planner(const Scene& scene, ScenePlan& plan)
+      : scene_(scene), plan_(plan), canvas_{0, 0, std::max(scene.width, 0), std::max(scene.height, 0)} {}
+
+  void run() {
+    const std::size_t n = scene_.commands.size();
+    plan_.decisions.assign(n, PlanDecision{});
+    layer_of_.assign(n, -1);
+    end_of_.assign(n, -1);
+    unclipped_.assign(n, PixelBox{});
+    find_layers_and_boxes();
+    cull_forwards();
+    cull_hidden();
+    plan_layers();
+    mark_aliased();
+    summarise();
+  }
+
+ private:
+  // ---- structure and boxes ----
+
+  PixelBox clip_box(const SceneClip* clip) {
+    if (!clip) return canvas_;
+    const auto it = clip_boxes_.find(clip);
+    if (it != clip_boxes_.end()) return it->second;
+    PixelBox box = clip_box(clip->parent.get());
+    Rect r;
+    if (device_box(clip->path, clip->to_device, r)) {
+      box = intersect(box, touching(r, 1, canvas_));
+    } else {
+      box = {};
+    }
+    clip_boxes_[clip] = box;
+    return box;
+  }
+
+  /// Whether every clip of the chain is a rectangle with whole-pixel corners that keeps its inside (a clip
+  /// without a mask).
+  static bool rectangular_clips(const SceneClip* clip) {
+    for (; clip; clip = clip->parent.get()) {
+      Rect r;
+      if (!device_rectangle(clip->path, clip->to_device, r) || !whole(r.x0) || !whole(r.y0) || !whole(r.x1) ||
+          !whole(r.y1)) {
+        return false;
+      }
+      if (clip->rule != FillRule::NonZero && clip->rule != FillRule::EvenOdd && clip->rule != FillRule::NonExterior) {
+        return false;  // the signed rules keep the inside or nothing, depending on the orientation
+      }
+    }
+    return true;
+  }
+
+  /// The exact pixels a chain of rectangular clips keeps (only when rectangular_clips() holds).
+  PixelBox rectangle_clip_region(const SceneClip* clip) const {
+    PixelBox box = canvas_;
+    for (; clip; clip = clip->parent.get()) {
+      Rect r;
+      device_rectangle(clip->path, clip->to_device, r);
+      box = intersect(box, interior(r));
+    }
+    return box;
+  }
+
+  PixelBox own_box(const SceneCommand& c) {
+    const PixelBox everywhere = canvas_;
+    const SceneState& s = c.state;
+    PixelBox box;
+    switch (c.kind) {
+      case Kind::Fill: {
+        Rect r;
+        if (device_box(c.path, c.to_device, r)) box = touching(r, 1, everywhere);
+        break;
+      }
+      case Kind::Stroke: {
+        Rect r;
+        if (!device_box(c.path, c.to_device, r)) break;
+        const double miter = s.line.join == LineJoin::Miter ? std::max(1.0, s.line.miter_limit) : 1.0;
+        const double reach = s.line.width / 2 * std::max(std::sqrt(2.0), miter) * max_scale(c.to_device);
+        box = touching(r, (std::isfinite(reach) ? reach : 1e300) + 1, everywhere);
+        break;
+      }
+      case Kind::DrawImage: {
+        Path rect;
+        rect.add_rect(c.dst);
+        Rect r;
+        if (device_box(rect, s.transform, r)) box = touching(r, 1, everywhere);
+        break;
+      }
+      case Kind::FillMask:
+      case Kind::PutPixels:
+        if (c.image) box = {c.x, c.y, c.x + c.image->width, c.y + c.image->height};
+        break;
+      case Kind::Fxaa:
+        return canvas_;
+      case Kind::BeginLayer:
+      case Kind::EndLayer:
+        return {};
+    }
+    if (c.kind != Kind::PutPixels && casts_shadow(s)) {
+      const double spread = 1.5 * s.shadow.blur + 1;  // three standard deviations of blur / 2
+      Rect moved{static_cast<double>(box.x0) + s.shadow.offset_x, static_cast<double>(box.y0) + s.shadow.offset_y,
+                 static_cast<double>(box.x1) + s.shadow.offset_x, static_cast<double>(box.y1) + s.shadow.offset_y};
+      if (!box.empty()) box = unite(box, touching(moved, spread, everywhere));
+    }
+    return box;
+  }
+
+  void find_layers_and_boxes() {
+    std::vector<int> open;  // BeginLayer indices
+    for (std::size_t i = 0; i < scene_.commands.size(); ++i) {
+      const SceneCommand& c = scene_.commands[i];
+      PlanDecision& d = plan_.decisions[i];
+      layer_of_[i] = open.empty() ? -1 : open.back();
+      if (c.kind == Kind::BeginLayer) {
+        // A layer covers its clip's box (in the enclosing layer's box); drawing inside is clipped to it.
+        const PixelBox outer = open.empty() ? canvas_ : plan_.decisions[open.back()].bounds;
+        d.bounds = intersect(clip_box(c.clip.get()), outer);
+        open.push_back(static_cast<int>(i));
+        continue;
+      }
+      if (c.kind == Kind::EndLayer) {
+        if (open.empty()) continue;  // unbalanced: replay ignores it
+        const int begin = open.back();
+        open.pop_back();
+        end_of_[begin] = static_cast<int>(i);
+        layer_of_[i] = begin;
+        plan_.decisions[i].bounds = plan_.decisions[begin].bounds;
+        continue;
+      }
+      const PixelBox region = open.empty() ? canvas_ : plan_.decisions[open.back()].bounds;
+      unclipped_[i] = own_box(c);
+      if (c.kind == Kind::PutPixels) {
+        d.bounds = intersect(unclipped_[i], canvas_);  // put_pixels ignores clips and layers
+      } else if (c.kind == Kind::Fxaa) {
+        d.bounds = canvas_;
+      } else if (!is_bounded(c.state.op)) {
+        d.bounds = intersect(clip_box(c.clip.get()), region);  // the whole clip region changes
+      } else {
+        d.bounds = intersect(intersect(unclipped_[i], clip_box(c.clip.get())), region);
+      }
+    }
+  }
+
+  // ---- culling ----
+
+  void cull(std::size_t i, Reason reason, int ref = -1) {
+    PlanDecision& d = plan_.decisions[i];
+    d.action = Action::Cull;
+    d.reason = reason;
+    d.ref = ref;
+    if (scene_.commands[i].kind == Kind::BeginLayer && end_of_[i] >= 0) {
+      for (int k = static_cast<int>(i) + 1; k <= end_of_[i]; ++k) {
+        PlanDecision& inner = plan_.decisions[k];
+        if (inner.action != Action::Cull) {
+          inner.action = Action::Cull;
+          inner.reason = Reason::InsideCulledLayer;
+          inner.ref = static_cast<int>(i);
+        }
+      }
+    }
+  }
+
+  void cull_forwards() {
+    for (std::size_t i = 0; i < scene_.commands.size(); ++i) {
+      const SceneCommand& c = scene_.commands[i];
+      const PlanDecision& d = plan_.decisions[i];
+      if (d.action == Action::Cull || c.kind == Kind::EndLayer || c.kind == Kind::Fxaa) continue;
+      const SceneState& s = c.state;
+      if (c.kind == Kind::BeginLayer) {
+        if (end_of_[i] < 0) {
+          cull(i, Reason::LayerNeverEnds);
+          // Everything after it is inside it, except what writes the target itself.
+          for (std::size_t k = i + 1; k < scene_.commands.size(); ++k) {
+            const Kind kind = scene_.commands[k].kind;
+            if (kind == Kind::PutPixels || kind == Kind::Fxaa) continue;
+            plan_.decisions[k].action = Action::Cull;
+            plan_.decisions[k].reason = Reason::InsideNeverEndingLayer;
+            plan_.decisions[k].ref = static_cast<int>(i);
+          }
+        } else if (is_bounded(c.layer.op) && !(c.layer.opacity > 0)) {
+          cull(i, Reason::LayerOpacityZero);
+        } else if (is_bounded(c.layer.op) && d.bounds.empty()) {
+          cull(i, Reason::LayerOutside);
+        }
+        continue;
+      }
+      if (c.kind == Kind::PutPixels) {
+        if (d.bounds.empty()) cull(i, Reason::OutsideCanvas);
+        continue;
+      }
+      if (d.bounds.empty()) {
+        cull(i, intersect(unclipped_[i], canvas_).empty() ? Reason::OutsideCanvas : Reason::OutsideClip);
+        continue;
+      }
+      if (!is_bounded(s.op)) continue;  // changes the clip region whatever it draws
+      const Paint& paint = c.kind == Kind::Stroke ? s.stroke_paint : s.fill_paint;
+      if (!(s.global_alpha > 0)) {
+        cull(i, Reason::GlobalAlphaZero);
+      } else if (c.kind != Kind::DrawImage && paint.is_invisible()) {
+        cull(i, Reason::TransparentPaint);
+      } else if (c.kind == Kind::Fill && !casts_shadow(s)) {
+        Rect r;
+        if (device_box(c.path, c.to_device, r) && (r.width() == 0 || r.height() == 0)) cull(i, Reason::ZeroArea);
+      } else if (c.kind == Kind::Stroke && !(s.line.width > 0)) {
+        cull(i, Reason::ZeroWidth);
+      }
+    }
+  }
+
+  /// The pixels command j overwrites whatever was there before (empty when it cannot promise that).
+  PixelBox overwritten_by(std::size_t j) {
+    const SceneCommand& c = scene_.commands[j];
+    const PlanDecision& d = plan_.decisions[j];
+    if (d.action != Action::Draw) return {};
+    if (c.kind == Kind::PutPixels) return d.bounds;
+    if (c.kind != Kind::Fill || !rectangular_clips(c.clip.get())) return {};
+    const SceneState& s = c.state;
+    const PixelBox clip = rectangle_clip_region(c.clip.get());
+    if (s.op == CompositeOp::Clear || (s.op == CompositeOp::Copy && !casts_shadow(s))) {
+      return clip;  // the whole clip region is replaced
+    }
+    Rect r;
+    if (!device_rectangle(c.path, c.to_device, r)) return {};
+    if (c.rule != FillRule::NonZero && c.rule != FillRule::EvenOdd && c.rule != FillRule::NonExterior) return {};
+    const bool opaque = s.global_alpha * d.alpha_scale >= 1 && s.fill_paint.is_opaque();
+    const bool erases = s.op == CompositeOp::DestinationOut && opaque;  // clear_rect
+    if (!erases && !(opaque && opaque_source_replaces(s.op))) return {};
+    return intersect(interior(r), clip);
+  }
+
+  void cull_hidden() {
+    // Backwards: each level (layer instance, or -1 for the target) keeps the largest regions that later
+    // commands overwrite. A post-filter reads neighbouring pixels, so nothing before it is hidden by what after.
+    constexpr std::size_t kOccluders = 8;
+    std::unordered_map<int, std::vector<std::pair<PixelBox, int>>> occluders;
+    for (std::size_t k = scene_.commands.size(); k-- > 0;) {
+      const SceneCommand& c = scene_.commands[k];
+      if (c.kind == Kind::Fxaa) {
+        occluders.clear();
+        continue;
+      }
+      if (c.kind == Kind::EndLayer) continue;
+      const int level = layer_of_[k];
+      PlanDecision& d = plan_.decisions[k];
+      auto& mine = occluders[level];
+      if (d.action == Action::Draw && !d.bounds.empty() && c.kind != Kind::PutPixels) {
+        for (const auto& [region, by] : mine) {
+          if (contains(region, d.bounds)) {
+            cull(k, Reason::Hidden, by);
+            break;
+          }
+        }
+      }
+      if (c.kind == Kind::BeginLayer) {
+        occluders.erase(static_cast<int>(k));  // its inside is done
+        continue;
+      }
+      const PixelBox region = overwritten_by(k);
+      if (region.empty()) continue;
+      // put_pixels writes the target even inside a layer: it hides what came before at the top level.
+      auto& list = c.kind == Kind::PutPixels ? occluders[-1] : mine;
+      list.emplace_back(region, static_cast<int>(k));
+      std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.first.area() > b.first.area(); });
+      if (list.size() > kOccluders) list.pop_back();
+    }
+  }
+
+  // ---- layers ----
+
+  void plan_layers() {
+    // Innermost first, so an outer layer sees what became of the inner ones.
+    std::vector<std::size_t> begins;
+    for (std::size_t i = 0; i < scene_.commands.size(); ++i) {
+      if (scene_.commands[i].kind == Kind::BeginLayer && end_of_[i] >= 0) begins.push_back(i);
+    }
+    std::sort(begins.begin(), begins.end(), [&](std::size_t a, std::size_t b) { return end_of_[a] - a < end_of_[b] - b; });
+    for (const std::size_t b : begins) plan_layer(b);
+  }
+
+  void plan_layer(std::size_t b) {
+    PlanDecision& d = plan_.decisions[b];
+    if (d.action != Action::Draw) return;
+    const SceneCommand& c = scene_.commands[b];
+    const int e = end_of_[b];
+    bool any = false, plain = true, shadows = false, nested = false;
+    // Its children: the drawing calls inside it that no kept inner layer encloses (a dropped inner layer's
+    // children draw straight into this one).
+    std::vector<std::size_t> children;
+    std::vector<bool> inner_kept;  // the inner layers open at k: kept or dropped
+    for (int k = static_cast<int>(b) + 1; k < e; ++k) {
+      const SceneCommand& inner = scene_.commands[k];
+      const PlanDecision& id = plan_.decisions[k];
+      if (id.action == Action::Cull) continue;
+      if (inner.kind == Kind::EndLayer) {
+        if (!inner_kept.empty()) inner_kept.pop_back();
+        continue;
+      }
+      if (inner.kind == Kind::PutPixels || inner.kind == Kind::Fxaa) plain = false;
+      if (inner.kind == Kind::BeginLayer) {
+        if (id.action == Action::Draw && inner.layer.op != CompositeOp::SourceOver) plain = false;
+        nested = nested || id.action == Action::Draw;
+        inner_kept.push_back(id.action == Action::Draw);
+        continue;
+      }
+      any = true;
+      if (inner.state.op != CompositeOp::SourceOver) plain = false;
+      shadows = shadows || casts_shadow(inner.state);
+      if (std::find(inner_kept.begin(), inner_kept.end(), true) == inner_kept.end()) {
+        children.push_back(static_cast<std::size_t>(k));
+      }
+    }
+    if (!any && is_bounded(c.layer.op)) {
+      cull(b, Reason::LayerEmpty);
+      return;
+    }
+    const std::int64_t area = d.bounds.area();
+    if (c.layer.mask) {
+      d.reason = Reason::LayerNeedsMask;
+    } else if (c.layer.op != CompositeOp::SourceOver) {
+      d.reason = Reason::LayerNeedsOperator;
+    } else if (!plain) {
+      d.reason = Reason::LayerNeedsIsolation;
+    } else if (!rectangular_clips(c.clip.get())) {
+      d.reason = Reason::LayerNeedsClip;
+    } else if (c.layer.opacity >= 1) {
+      drop(b, Reason::LayerDropped, 1);
+      plan_.layers_dropped++;
+      plan_.layer_pixels_saved += area;
+    } else if (nested) {  // opacity folds into the children only when no pixel is drawn twice
+      d.reason = Reason::LayerNeedsNested;
+    } else if (shadows) {
+      d.reason = Reason::LayerNeedsShadows;
+    } else if (!disjoint(children)) {
+      d.reason = Reason::LayerNeedsOverlap;
+    } else {
+      drop(b, Reason::LayerFolded, c.layer.opacity);
+      d.value = c.layer.opacity;
+      d.count = static_cast<int>(children.size());
+      plan_.layers_folded++;
+      plan_.layer_pixels_saved += area;
+    }
+  }
+
+  bool disjoint(std::vector<std::size_t> children) {
+    std::sort(children.begin(), children.end(),
+              [&](std::size_t a, std::size_t b) { return plan_.decisions[a].bounds.x0 < plan_.decisions[b].bounds.x0; });
+    // Sweep by x: each box is compared with the earlier ones that still reach its left side.
+    std::vector<std::size_t> active;
+    for (const std::size_t k : children) {
+      const PixelBox& box = plan_.decisions[k].bounds;
+      std::erase_if(active, [&](std::size_t a) { return plan_.decisions[a].bounds.x1 <= box.x0; });
+      for (const std::size_t a : active) {
+        if (!intersect(plan_.decisions[a].bounds, box).empty()) return false;
+      }
+      active.push_back(k);
+    }
+    return true;
+  }
+
+  void drop(std::size_t b, Reason reason, float alpha) {
+    PlanDecision& d = plan_.decisions[b];
+    d.action = Action::DropLayer;
+    d.reason = reason;
+    PlanDecision& e = plan_.decisions[end_of_[b]];
+    e.action = Action::DropLayer;
+    e.reason = Reason::EndOfDroppedLayer;
+    e.ref = static_cast<int>(b);
+    if (alpha >= 1) return;
+    for (int k = static_cast<int>(b) + 1; k < end_of_[b]; ++k) plan_.decisions[k].alpha_scale *= alpha;
+  }
+
+  // ---- coverage ----
+
+  void mark_aliased() {
+    for (std::size_t i = 0; i < scene_.commands.size(); ++i) {
+      const SceneCommand& c = scene_.commands[i];
+      PlanDecision& d = plan_.decisions[i];
+      // Not with a shadow: the shadow pass draws the shape moved by a fractional offset.
+      if (d.action != Action::Draw || c.kind != Kind::Fill || c.state.aa == AntiAlias::None || casts_shadow(c.state)) {
+        continue;
+      }
+      Rect r;
+      if (device_rectangle(c.path, c.to_device, r) && whole(r.x0) && whole(r.y0) && whole(r.x1) && whole(r.y1)) {
+        d.aliased = true;
+      }
+    }
+  }
+
+  // ---- summary ----
+
+  void summarise() {
+    const int ts = plan_.tile_size;
+    plan_.tiles_x = (canvas_.x1 + ts - 1) / ts;
+    plan_.tiles_y = (canvas_.y1 + ts - 1) / ts;
+    plan_.touched_tiles.assign(static_cast<std::size_t>(plan_.tiles_x) * plan_.tiles_y, 0);
+    for (std::size_t i = 0; i < scene_.commands.size(); ++i) {
+      const SceneCommand& c = scene_.commands[i];
+      PlanDecision& d = plan_.decisions[i];
+      if (d.action == Action::Cull) {
+        plan_.culled++;
+        if (c.kind != Kind::BeginLayer && c.kind != Kind::EndLayer) plan_.pixels_not_composited += d.bounds.area();
+        continue;
+      }
+      if (d.aliased) plan_.aliased++;
+      if (c.kind == Kind::BeginLayer) continue;
+      if (c.kind == Kind::EndLayer && d.action == Action::Draw) d.reason = Reason::LayerComposited;
+      const PixelBox box = intersect(d.bounds, canvas_);
+      if (box.empty()) continue;
+      for (int ty = box.y0 / ts; ty <= (box.y1 - 1) / ts; ++ty) {
+        for (int tx = box.x0 / ts; tx <= (box.x1 - 1) / ts; ++tx) {
+          plan_.touched_tiles[static_cast<std::size_t>(ty) * plan_.tiles_x + tx] = 1;
+        }
+      }
+    }
+  }
+
+  const Scene& scene_;
+  ScenePlan& plan_;
+  PixelBox canvas_;
+  std::vector<int> layer_of_;  // the BeginLayer a command is inside (-1: none); EndLayer: its own BeginLayer
+  std::vector<int> end_of_;    // BeginLayer: its EndLayer (-1: never ended)
+  std::vector<PixelBox> unclipped_;  // the box of each call before its clip
+  std::unordered_map<const SceneClip*, PixelBox> clip_boxes_;
+};
+
+std::string format_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+std::string drawn_sentence(const SceneCommand& c, const PlanDecision& d) {
+  const SceneState& s = c.state;
+  switch (c.kind) {
+    case Kind::PutPixels: return "drawn: pixels stored as given";
+    case Kind::Fxaa: return "drawn: post-filter over the whole target";
+    default: break;
+  }
+  std::string why = "drawn";
+  if (d.aliased) {
+    why += ", no antialiasing work (whole-pixel rectangle)";
+  } else if (s.aa == AntiAlias::Exact) {
+    why += ", exact coverage where edges meet inside a pixel (analytic elsewhere)";
+  }
+  const Paint& paint = c.kind == Kind::Stroke ? s.stroke_paint : s.fill_paint;
+  const float alpha = s.global_alpha * d.alpha_scale;
+  if (d.alpha_scale < 1) why += ", folded opacity " + format_number(d.alpha_scale);
+  if (c.kind != Kind::DrawImage && s.op == CompositeOp::SourceOver && alpha >= 1 && paint.is_opaque()) {
+    why += ", opaque paint: full coverage stored without blending";
+  } else {
+    why += ", blended (" + std::string(to_string(s.op)) + ")";
+  }
+  if (casts_shadow(s)) why += ", with shadow";
+  return why;
+}
+
+const char* kind_name(Kind k) {
+  switch (k) {
+    case Kind::Fill: return "fill";
+    case Kind::Stroke: return "stroke";
+    case Kind::DrawImage: return "image";
+    case Kind::FillMask: return "mask";
+    case Kind::PutPixels: return "pixels";
+    case Kind::BeginLayer: return "layer";
+    case Kind::EndLayer: return "end";
+    case Kind::Fxaa: return "fxaa";
+  }
+  return "?";
+}
+
+const char* action_name(Action a) {
+  switch (a) {
+    case Action::Draw: return "draw";
+    case Action::Cull: return "cull";
+    case Action::DropLayer: return "drop";
+  }
+  return "?";
+}
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char ch : s) {
+    if (ch == '"' || ch == '\\') {
+      out += '\\';
+      out += ch;
+    } else if (static_cast<unsigned char>(ch) < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", ch);
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string describe_decision(const Scene& scene, const ScenePlan& plan, std::size_t i) {
+  const SceneCommand& c = scene.commands.at(i);
+  const PlanDecision& d = plan.decisions.at(i);
+  const std::string ref = "#" + std::to_string(d.ref);
+  const std::string op = std::string(to_string(c.kind == Kind::BeginLayer ? c.layer.op : c.state.op));
+  switch (d.reason) {
+    case Reason::Drawn: return drawn_sentence(c, d);
+    case Reason::OutsideCanvas: return "outside the canvas";
+    case Reason::OutsideClip: return "outside its clip";
+    case Reason::GlobalAlphaZero: return "global alpha 0 with " + op + ": changes nothing";
+    case Reason::TransparentPaint: return "transparent paint with " + op + ": changes nothing";
+    case Reason::ZeroArea: return "zero area";
+    case Reason::ZeroWidth: return "zero line width";
+    case Reason::Hidden:
+      return std::string(c.kind == Kind::BeginLayer ? "layer " : "") + "hidden under " + ref +
+             ", which overwrites every pixel it can change";
+    case Reason::LayerNeverEnds: return "layer never ended: never shows";
+    case Reason::InsideNeverEndingLayer: return "inside layer " + ref + ", which never ends";
+    case Reason::InsideCulledLayer: return "inside layer " + ref + ", which is culled";
+    case Reason::LayerOpacityZero: return "layer opacity 0: draws nothing";
+    case Reason::LayerOutside: return "layer outside the canvas or its clip";
+    case Reason::LayerEmpty: return "layer with nothing left to draw";
+    case Reason::LayerNeedsMask: return "layer needed: a mask";
+    case Reason::LayerNeedsOperator: return "layer needed: composited with " + op;
+    case Reason::LayerNeedsIsolation: return "layer needed: drawing inside that is not source-over";
+    case Reason::LayerNeedsClip: return "layer needed: an antialiased clip applied once to the whole layer";
+    case Reason::LayerNeedsOverlap: return "layer needed: opacity " + format_number(c.layer.opacity) + " over children that overlap";
+    case Reason::LayerNeedsNested: return "layer needed: opacity " + format_number(c.layer.opacity) + " over a layer of its own";
+    case Reason::LayerNeedsShadows: return "layer needed: opacity " + format_number(c.layer.opacity) + " over shadows";
+    case Reason::LayerDropped:
+      return "layer dropped: opacity 1, source-over and source-over inside give the same pixels without it";
+    case Reason::LayerFolded:
+      return "layer folded: opacity " + format_number(d.value) + " goes into each of " + std::to_string(d.count) +
+             " children, which touch disjoint pixels";
+    case Reason::EndOfDroppedLayer: return "end of dropped layer " + ref;
+    case Reason::LayerComposited: return "layer composited";
+  }
+  return "?";
+}
+
+int ScenePlan::touched_tile_count() const {
+  return static_cast<int>(std::count(touched_tiles.begin(), touched_tiles.end(), std::uint8_t{1}));
+}
+
+ScenePlan plan_scene(const Scene& scene) {
+  ScenePlan plan;
+  Planner(scene, plan).run();
+  return plan;
+}
+
+std::string explain_plan(const Scene& scene, const ScenePlan& plan) {
+  std::ostringstream out;
+  for (std::size_t i = 0; i < scene.commands.size() && i < plan.decisions.size(); ++i) {
+    const PlanDecision& d = plan.decisions[i];
+    char head[96];
+    const PixelBox& b = d.bounds;
+    if (b.empty()) {
+      std::snprintf(head, sizeof head, "#%-5zu %-6s %-4s %-22s ", i, kind_name(scene.commands[i].kind),
+                    action_name(d.action), "(no pixels)");
+    } else {
+      char box[48];
+      std::snprintf(box, sizeof box, "%d,%d %dx%d", b.x0, b.y0, b.x1 - b.x0, b.y1 - b.y0);
+      std::snprintf(head, sizeof head, "#%-5zu %-6s %-4s %-22s ", i, kind_name(scene.commands[i].kind),
+                    action_name(d.action), box);
+    }
+    out << head << describe_decision(scene, plan, i) << '\n';
+  }
+  const int tiles = plan.tiles_x * plan.tiles_y;
+  out << "summary: " << scene.commands.size() << " commands, " << plan.culled << " culled ("
+      << plan.pixels_not_composited << " pixels not composited); layers: " << plan.layers_dropped << " dropped, "
+      << plan.layers_folded << " folded (" << plan.layer_pixels_saved << " layer pixels not allocated); "
+      << plan.aliased << " without antialiasing work; tiles touched: " << plan.touched_tile_count() << " of "
+      << tiles << " (" << plan.tile_size << " px)\n";
+  return out.str();
+}
+
+std::string explain_plan_json(const Scene& scene, const ScenePlan& plan) {
+  std::ostringstream out;
+  out << "{\"width\":" << scene.width << ",\"height\":" << scene.height << ",\"commands\":[";
+  for (std::size_t i = 0; i < scene.commands.size() && i < plan.decisions.size(); ++i) {
+    const PlanDecision& d = plan.decisions[i];
+    if (i) out << ',';
+    out << "{\"index\":" << i << ",\"kind\":\"" << kind_name(scene.commands[i].kind) << "\",\"action\":\""
+        << action_name(d.action) << "\",\"bounds\":[" << d.bounds.x0 << ',' << d.bounds.y0 << ',' << d.bounds.x1
+        << ',' << d.bounds.y1 << "],\"alpha_scale\":" << d.alpha_scale << ",\"aliased\":"
+        << (d.aliased ? "true" : "false") << ",\"ref\":" << d.ref << ",\"why\":"
+        << json_string(describe_decision(scene, plan, i))
+        << '}';
+  }
+  out << "],\"summary\":{\"commands\":" << scene.commands.size() << ",\"culled\":" << plan.culled
+      << ",\"pixels_not_composited\":" << plan.pixels_not_composited << ",\"layers_dropped\":" << plan.layers_dropped
+      << ",\"layers_folded\":" << plan.layers_folded << ",\"layer_pixels_saved\":" << plan.layer_pixels_saved
+      << ",\"aliased\":" << plan.aliased << ",\"tiles_touched\":" << plan.touched_tile_count()
+      << ",\"tiles\":" << plan.tiles_x * plan.tiles_y << ",\"tile_size\":" << plan.tile_size << "}}\n";
+  return out.str();
+}
+
+}  // namespace vraster

@@ -1,0 +1,361 @@
+// Recorded scenes and the planner (include/vraster/scene.hpp).
+//
+// Properties: replaying a recording draws exactly what drawing directly draws; a planned replay draws the same
+// picture as the naive one (within one level per channel, from rounding in a different order) on random scenes
+// built to meet every rule; and hand-made scenes get the decisions they should, for the reason they should.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <random>
+#include <string>
+
+#include "vraster/canvas.hpp"
+#include "vraster/error.hpp"
+#include "vraster/scene.hpp"
+
+using namespace vraster;
+
+namespace {
+
+using Draw = std::function<void(Canvas&)>;
+using Action = PlanDecision::Action;
+
+Scene record(int w, int h, const Draw& draw) {
+  Scene scene;
+  scene.width = w;
+  scene.height = h;
+  Canvas recorder(scene);
+  draw(recorder);
+  return scene;
+}
+
+Image direct(int w, int h, const Draw& draw) {
+  Image image(w, h);
+  image.clear(Color::transparent());
+  Canvas canvas(image);
+  draw(canvas);
+  return image;
+}
+
+Image replayed(const Scene& scene, const ScenePlan* plan) {
+  Image image(scene.width, scene.height);
+  image.clear(Color::transparent());
+  Canvas canvas(image);
+  canvas.draw_scene(scene, plan);
+  return image;
+}
+
+int max_difference(const Image& a, const Image& b) {
+  int worst = 0;
+  for (std::size_t i = 0; i < a.data.size(); ++i) worst = std::max(worst, std::abs(a.data[i] - b.data[i]));
+  return worst;
+}
+
+/// A random scene that exercises every kind of call and every planner rule: opaque covers drawn late, layers
+/// of opacity 1, groups with disjoint children, clips (rectangles and circles), shadows, images, masks.
+void random_scene(Canvas& c, unsigned seed) {
+  std::mt19937 rng(seed);
+  auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  auto pick = [&](int n) { return static_cast<int>(rng() % static_cast<unsigned>(n)); };
+  auto colour = [&](bool opaque) {
+    return Color{static_cast<float>(uni(0, 1)), static_cast<float>(uni(0, 1)), static_cast<float>(uni(0, 1)),
+                 opaque ? 1.f : static_cast<float>(uni(0.2, 1))};
+  };
+  auto shape = [&] {
+    c.begin_path();
+    switch (pick(3)) {
+      case 0: c.rect(uni(-10, 60), uni(-10, 60), uni(1, 40), uni(1, 40)); break;
+      case 1: c.rect(pick(60), pick(60), 1 + pick(30), 1 + pick(30)); break;  // whole pixels
+      default: c.arc(uni(0, 64), uni(0, 64), uni(2, 20), 0, 6.283185307179586); break;
+    }
+  };
+  Image tile(4, 3);
+  tile.clear(colour(false));
+  const int calls = 8 + pick(20);
+  int depth = 0, layers = 0;
+  for (int k = 0; k < calls; ++k) {
+    switch (pick(12)) {
+      case 0:
+      case 1:
+        c.set_fill_color(colour(pick(2) == 0));
+        shape();
+        c.fill();
+        break;
+      case 2:
+        c.set_stroke_color(colour(pick(2) == 0));
+        c.set_line_width(uni(0.5, 6));
+        shape();
+        c.stroke();
+        break;
+      case 3:  // an opaque cover, pixel-aligned or not
+        c.set_fill_color(colour(true));
+        if (pick(2)) c.fill_rect(pick(20), pick(20), 20 + pick(44), 20 + pick(44));
+        else c.fill_rect(uni(0, 20), uni(0, 20), uni(20, 60), uni(20, 60));
+        break;
+      case 4:
+        if (depth < 3) {
+          c.save();
+          ++depth;
+          shape();
+          c.clip(pick(2) ? FillRule::NonZero : FillRule::EvenOdd);
+        }
+        break;
+      case 5:
+        if (depth > 0) {
+          c.restore();
+          --depth;
+        }
+        break;
+      case 6: {
+        if (layers >= 2) break;
+        LayerOptions options;
+        options.opacity = pick(2) ? 1.f : static_cast<float>(uni(0.2, 0.9));
+        if (pick(4) == 0) options.op = CompositeOp::Multiply;
+        c.begin_layer(options);
+        ++layers;
+        const int children = 1 + pick(4);
+        const bool disjoint = pick(2) == 0;
+        for (int i = 0; i < children; ++i) {
+          c.set_fill_color(colour(pick(2) == 0));
+          if (disjoint) c.fill_rect(2 + i * 16, 2 + pick(40), 12, 10);
+          else {
+            shape();
+            c.fill();
+          }
+        }
+        if (pick(2)) {
+          c.end_layer();
+          --layers;
+        }
+        break;
+      }
+      case 7:
+        if (layers > 0) {
+          c.end_layer();
+          --layers;
+        }
+        break;
+      case 8:
+        c.set_global_alpha(pick(3) == 0 ? 0 : uni(0.3, 1));
+        break;
+      case 9: {
+        static const CompositeOp ops[] = {CompositeOp::SourceOver, CompositeOp::SourceOver, CompositeOp::Copy,
+                                          CompositeOp::DestinationOut, CompositeOp::Screen, CompositeOp::SourceAtop};
+        c.set_composite(ops[pick(6)]);
+        break;
+      }
+      case 10:
+        c.draw_image(tile, uni(-5, 50), uni(-5, 50), uni(3, 30), uni(3, 30));
+        break;
+      case 11:
+        if (pick(2)) {
+          c.set_shadow(Shadow{colour(false), uni(-4, 4), uni(-4, 4), uni(0, 3)});
+        } else {
+          c.set_shadow(Shadow{});
+          c.clear_rect(uni(0, 50), uni(0, 50), uni(2, 20), uni(2, 20));
+        }
+        break;
+    }
+  }
+}
+
+}  // namespace
+
+TEST(Scene, ReplayingARecordingDrawsExactlyWhatDrawingDirectlyDraws) {
+  for (unsigned seed = 1; seed <= 60; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const Draw draw = [seed](Canvas& c) { random_scene(c, seed); };
+    const Scene scene = record(64, 64, draw);
+    EXPECT_EQ(max_difference(direct(64, 64, draw), replayed(scene, nullptr)), 0);
+  }
+}
+
+TEST(Scene, APlannedRenderDrawsTheNaivePicture) {
+  int culled = 0, dropped = 0, folded = 0;
+  for (unsigned seed = 1; seed <= 1000; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const Scene scene = record(64, 64, [seed](Canvas& c) { random_scene(c, seed); });
+    const ScenePlan plan = plan_scene(scene);
+    ASSERT_EQ(plan.decisions.size(), scene.commands.size());
+    // A folded opacity is applied to the exact colour, where the naive render first rounds the layer to 8 bits
+    // and then applies its opacity (quantised on its own path): those two roundings can add up to two levels.
+    EXPECT_LE(max_difference(replayed(scene, nullptr), replayed(scene, &plan)), plan.layers_folded > 0 ? 2 : 1)
+        << explain_plan(scene, plan);
+    culled += plan.culled;
+    dropped += plan.layers_dropped;
+    folded += plan.layers_folded;
+  }
+  // The scenes meet every rule often enough for the comparison to mean something.
+  EXPECT_GT(culled, 100);
+  EXPECT_GT(dropped, 20);
+  EXPECT_GT(folded, 10);
+}
+
+TEST(ScenePlanner, CallsUnderALaterOpaqueRectangleAreCulled) {
+  const Scene scene = record(100, 80, [](Canvas& c) {
+    c.set_fill_color({1, 0, 0, 1});
+    c.begin_path();
+    c.arc(30, 30, 20, 0, 6.3);
+    c.fill();                        // #0: hidden by #2
+    c.fill_rect(90, 10, 30, 30);     // #1: reaches past the cover: kept
+    c.set_fill_color({0, 0, 1, 1});
+    c.fill_rect(0, 0, 80, 80);       // #2: the cover (opaque, whole pixels)
+  });
+  const ScenePlan plan = plan_scene(scene);
+  EXPECT_EQ(plan.decisions[0].action, Action::Cull);
+  EXPECT_EQ(plan.decisions[0].reason, PlanReason::Hidden);
+  EXPECT_EQ(plan.decisions[0].ref, 2);
+  EXPECT_EQ(describe_decision(scene, plan, 0), "hidden under #2, which overwrites every pixel it can change");
+  EXPECT_EQ(plan.decisions[1].action, Action::Draw);
+  EXPECT_EQ(plan.decisions[2].action, Action::Draw);
+  EXPECT_TRUE(plan.decisions[2].aliased);
+  EXPECT_EQ(plan.culled, 1);
+}
+
+TEST(ScenePlanner, TranslucentOrClippedCoversHideNothing) {
+  const Scene scene = record(64, 64, [](Canvas& c) {
+    c.fill_rect(10, 10, 10, 10);  // #0
+    c.set_fill_color({0, 0, 1, 0.5f});
+    c.fill_rect(0, 0, 64, 64);    // #1: translucent
+    c.save();
+    c.begin_path();
+    c.arc(32, 32, 30, 0, 6.3);
+    c.clip();                     // an antialiased clip: its edge pixels blend
+    c.set_fill_color({0, 0, 1, 1});
+    c.fill_rect(0, 0, 64, 64);    // #2
+    c.restore();
+    c.set_fill_color({0, 1, 0, 1});
+    c.fill_rect(0.5, 0.5, 40, 40);  // #3: not whole pixels: covers only [1, 40)
+  });
+  const ScenePlan plan = plan_scene(scene);
+  EXPECT_EQ(plan.decisions[0].action, Action::Cull) << "hidden by #3, whose interior [1,40) contains [9,21)";
+  EXPECT_EQ(plan.decisions[0].ref, 3);
+  EXPECT_EQ(plan.decisions[1].action, Action::Draw);  // reaches pixel row 0, which #3 only half covers
+  EXPECT_EQ(plan.decisions[2].action, Action::Draw);
+}
+
+TEST(ScenePlanner, InvisibleEmptyAndOutsideCallsAreCulled) {
+  const Scene scene = record(50, 50, [](Canvas& c) {
+    c.fill_rect(60, 60, 10, 10);  // #0 outside the canvas
+    c.save();
+    c.begin_path();
+    c.rect(0, 0, 10, 10);
+    c.clip();
+    c.fill_rect(20, 20, 10, 10);  // #1 outside the clip
+    c.restore();
+    c.set_fill_color({1, 0, 0, 0});
+    c.fill_rect(5, 5, 10, 10);    // #2 transparent paint
+    c.set_fill_color({1, 0, 0, 1});
+    c.set_global_alpha(0);
+    c.fill_rect(5, 5, 10, 10);    // #3 alpha 0
+    c.set_composite(CompositeOp::Copy);
+    c.fill_rect(5, 5, 10, 10);    // #4 copy with alpha 0 clears the clip region: kept
+    c.set_global_alpha(1);
+    c.set_composite(CompositeOp::SourceOver);
+    c.begin_path();
+    c.move_to(1, 1);
+    c.line_to(40, 1);
+    c.line_to(20, 1);
+    c.fill();                     // #5 zero area
+  });
+  const ScenePlan plan = plan_scene(scene);
+  ASSERT_EQ(plan.decisions.size(), 6u);
+  EXPECT_EQ(plan.decisions[0].reason, PlanReason::OutsideCanvas);
+  EXPECT_EQ(plan.decisions[1].reason, PlanReason::OutsideClip);
+  EXPECT_EQ(describe_decision(scene, plan, 2), "transparent paint with source-over: changes nothing");
+  EXPECT_EQ(plan.decisions[3].reason, PlanReason::GlobalAlphaZero);
+  EXPECT_EQ(plan.decisions[4].action, Action::Draw);
+  EXPECT_EQ(plan.decisions[5].reason, PlanReason::ZeroArea);
+  EXPECT_EQ(plan.culled, 5);
+}
+
+TEST(ScenePlanner, LayersAreDroppedOrFoldedOnlyWhenThePictureStaysTheSame) {
+  const Draw draw = [](Canvas& c) {
+    c.begin_layer(1.f);  // #0: opacity 1, source-over inside: dropped
+    c.set_fill_color({1, 0, 0, 0.5f});
+    c.fill_rect(2, 2, 20, 20);
+    c.fill_rect(10, 10, 20, 20);
+    c.end_layer();       // #3
+    c.begin_layer(0.5f);  // #4: disjoint children: folded
+    c.set_fill_color({0, 1, 0, 1});
+    c.fill_rect(40, 2, 10, 10);
+    c.fill_rect(40, 20, 10, 10);
+    c.end_layer();        // #7
+    c.begin_layer(0.5f);  // #8: overlapping children: kept
+    c.fill_rect(2, 40, 20, 20);
+    c.fill_rect(10, 45, 20, 20);
+    c.end_layer();        // #11
+    c.begin_layer(1.f);   // #12: multiply inside: kept
+    c.set_composite(CompositeOp::Multiply);
+    c.fill_rect(40, 40, 20, 20);
+    c.end_layer();        // #14
+  };
+  const Scene scene = record(64, 64, draw);
+  const ScenePlan plan = plan_scene(scene);
+  EXPECT_EQ(plan.decisions[0].action, Action::DropLayer);
+  EXPECT_EQ(plan.decisions[3].action, Action::DropLayer);
+  EXPECT_EQ(plan.decisions[4].action, Action::DropLayer);
+  EXPECT_FLOAT_EQ(plan.decisions[5].alpha_scale, 0.5f);
+  EXPECT_EQ(plan.decisions[8].action, Action::Draw);
+  EXPECT_EQ(plan.decisions[8].reason, PlanReason::LayerNeedsOverlap);
+  EXPECT_EQ(describe_decision(scene, plan, 4),
+            "layer folded: opacity 0.5 goes into each of 2 children, which touch disjoint pixels");
+  EXPECT_EQ(plan.decisions[12].action, Action::Draw);
+  EXPECT_EQ(plan.decisions[12].reason, PlanReason::LayerNeedsIsolation);
+  EXPECT_EQ(plan.layers_dropped, 1);
+  EXPECT_EQ(plan.layers_folded, 1);
+  EXPECT_LE(max_difference(direct(64, 64, draw), replayed(scene, &plan)), 1);
+}
+
+TEST(ScenePlanner, APostFilterStopsOcclusion) {
+  const Scene scene = record(32, 32, [](Canvas& c) {
+    c.set_anti_alias(AntiAlias::None);
+    c.begin_path();
+    c.move_to(2, 2);
+    c.line_to(30, 5);
+    c.line_to(6, 30);
+    c.fill();                 // #0
+    c.apply_fxaa();           // #1 reads the neighbours of every pixel
+    c.fill_rect(0, 0, 32, 32);  // #2
+  });
+  const ScenePlan plan = plan_scene(scene);
+  EXPECT_EQ(plan.decisions[0].action, Action::Draw);
+}
+
+TEST(ScenePlanner, ExplainNamesEveryCommandAndSummarises) {
+  const Scene scene = record(128, 128, [](Canvas& c) {
+    c.fill_rect(10, 10, 5, 5);
+    c.fill_rect(0, 0, 128, 128);
+  });
+  const ScenePlan plan = plan_scene(scene);
+  const std::string text = explain_plan(scene, plan);
+  EXPECT_NE(text.find("#0     fill   cull"), std::string::npos) << text;
+  EXPECT_NE(text.find("#1     fill   draw"), std::string::npos) << text;
+  EXPECT_NE(text.find("summary: 2 commands, 1 culled"), std::string::npos) << text;
+  EXPECT_NE(text.find("tiles touched: 4 of 4"), std::string::npos) << text;
+  const std::string json = explain_plan_json(scene, plan);
+  EXPECT_NE(json.find("\"action\":\"cull\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"ref\":1"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"culled\":1"), std::string::npos) << json;
+}
+
+TEST(ScenePlanner, TilesCountOnlyWhatKeptCallsTouch) {
+  const Scene scene = record(256, 256, [](Canvas& c) { c.fill_rect(70, 70, 40, 40); });
+  const ScenePlan plan = plan_scene(scene);
+  EXPECT_EQ(plan.tiles_x * plan.tiles_y, 16);
+  EXPECT_EQ(plan.touched_tile_count(), 1);  // [69, 111) with its antialiasing margin stays in tile (1, 1)
+}
+
+TEST(Scene, RecordingCanvasDrawsNothingAndReadsTransparentPixels) {
+  Scene scene;
+  scene.width = 8;
+  scene.height = 8;
+  Canvas recorder(scene);
+  recorder.fill_rect(0, 0, 8, 8);
+  const Image px = recorder.get_pixels(0, 0, 2, 2);
+  for (const auto v : px.data) EXPECT_EQ(v, 0);
+  EXPECT_EQ(scene.commands.size(), 1u);
+  Scene bad;
+  EXPECT_THROW({ Canvas c(bad); }, Error);  // a 0 x 0 scene
+}
