@@ -41,15 +41,28 @@ bool contains(const PixelBox& outer, const PixelBox& inner) {
   return inner.x0 >= outer.x0 && inner.y0 >= outer.y0 && inner.x1 <= outer.x1 && inner.y1 <= outer.y1;
 }
 
+/// floor and ceil of a value already clamped to the int range (std::floor is a libm call on baseline x86-64,
+/// and this runs for every command).
+int floor_int(double v) {
+  const int i = static_cast<int>(v);
+  return i - (v < i);
+}
+int ceil_int(double v) {
+  const int i = static_cast<int>(v);
+  return i + (v > i);
+}
+
 /// The pixels a device rectangle can touch, grown by `margin` pixels; a box that is not finite is "everywhere".
 PixelBox touching(const Rect& r, double margin, const PixelBox& everywhere) {
-  if (!std::isfinite(r.x0) || !std::isfinite(r.y0) || !std::isfinite(r.x1) || !std::isfinite(r.y1)) {
-    return everywhere;
-  }
   constexpr double kLimit = 1 << 30;
-  auto lo = [&](double v) { return static_cast<int>(std::clamp(std::floor(v - margin), -kLimit, kLimit)); };
-  auto hi = [&](double v) { return static_cast<int>(std::clamp(std::ceil(v + margin), -kLimit, kLimit)); };
-  return {lo(r.x0), lo(r.y0), hi(r.x1), hi(r.y1)};
+  if (!(r.x0 > -kLimit && r.y0 > -kLimit && r.x1 < kLimit && r.y1 < kLimit)) {
+    if (!std::isfinite(r.x0) || !std::isfinite(r.y0) || !std::isfinite(r.x1) || !std::isfinite(r.y1)) {
+      return everywhere;
+    }
+  }
+  auto clamp = [&](double v) { return std::clamp(v, -kLimit, kLimit); };
+  return {floor_int(clamp(r.x0 - margin)), floor_int(clamp(r.y0 - margin)), ceil_int(clamp(r.x1 + margin)),
+          ceil_int(clamp(r.y1 + margin))};
 }
 
 /// The device box of a path's control points (the curves lie inside it); false when it has no points.
@@ -122,11 +135,15 @@ class Planner {
     layer_of_.assign(n, -1);
     end_of_.assign(n, -1);
     unclipped_.assign(n, PixelBox{});
+    kind_.resize(n);
+    device_.assign(n, Rect{});
+    is_rect_.assign(n, 0);
+    may_overwrite_at_.assign(n, 0);
+    // Commands are large (paths, paints): one pass reads them; the later ones read the decisions.
     find_layers_and_boxes();
-    cull_forwards();
+    cull_layers();
     cull_hidden();
     plan_layers();
-    mark_aliased();
     summarise();
   }
 
@@ -175,14 +192,23 @@ class Planner {
     return box;
   }
 
-  PixelBox own_box(const SceneCommand& c) {
+  PixelBox own_box(const SceneCommand& c, std::size_t index) {
     const PixelBox everywhere = canvas_;
     const SceneState& s = c.state;
     PixelBox box;
     switch (c.kind) {
       case Kind::Fill: {
-        Rect r;
-        if (device_box(c.path, c.to_device, r)) box = touching(r, 1, everywhere);
+        Rect& r = device_[index];
+        if (c.path.verbs().size() <= 6 && device_rectangle(c.path, c.to_device, r)) {
+          is_rect_[index] = 1;
+          may_overwrite_at_[index] = 1;
+          may_overwrite_ = true;
+        } else if (!device_box(c.path, c.to_device, r)) {
+          r = Rect{0, 0, 0, 0};
+          break;
+        }
+        box = touching(r, 1, everywhere);
+        if (s.op == CompositeOp::Copy || s.op == CompositeOp::Clear) may_overwrite_ = may_overwrite_at_[index] = true;
         break;
       }
       case Kind::Stroke: {
@@ -224,6 +250,7 @@ class Planner {
     for (std::size_t i = 0; i < scene_.commands.size(); ++i) {
       const SceneCommand& c = scene_.commands[i];
       PlanDecision& d = plan_.decisions[i];
+      kind_[i] = c.kind;
       layer_of_[i] = open.empty() ? -1 : open.back();
       if (c.kind == Kind::BeginLayer) {
         // A layer covers its clip's box (in the enclosing layer's box); drawing inside is clipped to it.
@@ -242,8 +269,9 @@ class Planner {
         continue;
       }
       const PixelBox region = open.empty() ? canvas_ : plan_.decisions[open.back()].bounds;
-      unclipped_[i] = own_box(c);
+      unclipped_[i] = own_box(c, i);
       if (c.kind == Kind::PutPixels) {
+        may_overwrite_ = may_overwrite_at_[i] = true;
         d.bounds = intersect(unclipped_[i], canvas_);  // put_pixels ignores clips and layers
       } else if (c.kind == Kind::Fxaa) {
         d.bounds = canvas_;
@@ -252,7 +280,10 @@ class Planner {
       } else {
         d.bounds = intersect(intersect(unclipped_[i], clip_box(c.clip.get())), region);
       }
+      cull_call(i);
+      mark_aliased(i);
     }
+    open_at_end_ = std::move(open);
   }
 
   // ---- culling ----
@@ -262,7 +293,7 @@ class Planner {
     d.action = Action::Cull;
     d.reason = reason;
     d.ref = ref;
-    if (scene_.commands[i].kind == Kind::BeginLayer && end_of_[i] >= 0) {
+    if (kind_[i] == Kind::BeginLayer && end_of_[i] >= 0) {
       for (int k = static_cast<int>(i) + 1; k <= end_of_[i]; ++k) {
         PlanDecision& inner = plan_.decisions[k];
         if (inner.action != Action::Cull) {
@@ -274,50 +305,55 @@ class Planner {
     }
   }
 
-  void cull_forwards() {
+  /// Culls a layer that never ends (and everything in it), or one that cannot show.
+  void cull_layers() {
+    for (const int b : open_at_end_) {
+      if (plan_.decisions[b].action == Action::Cull) continue;  // inside an earlier one that never ends
+      cull(b, Reason::LayerNeverEnds);
+      // Everything after it is inside it, except what writes the target itself.
+      for (std::size_t k = b + 1; k < scene_.commands.size(); ++k) {
+        if (kind_[k] == Kind::PutPixels || kind_[k] == Kind::Fxaa) continue;
+        plan_.decisions[k].action = Action::Cull;
+        plan_.decisions[k].reason = Reason::InsideNeverEndingLayer;
+        plan_.decisions[k].ref = b;
+      }
+    }
     for (std::size_t i = 0; i < scene_.commands.size(); ++i) {
+      if (kind_[i] != Kind::BeginLayer || plan_.decisions[i].action == Action::Cull) continue;
       const SceneCommand& c = scene_.commands[i];
-      const PlanDecision& d = plan_.decisions[i];
-      if (d.action == Action::Cull || c.kind == Kind::EndLayer || c.kind == Kind::Fxaa) continue;
-      const SceneState& s = c.state;
-      if (c.kind == Kind::BeginLayer) {
-        if (end_of_[i] < 0) {
-          cull(i, Reason::LayerNeverEnds);
-          // Everything after it is inside it, except what writes the target itself.
-          for (std::size_t k = i + 1; k < scene_.commands.size(); ++k) {
-            const Kind kind = scene_.commands[k].kind;
-            if (kind == Kind::PutPixels || kind == Kind::Fxaa) continue;
-            plan_.decisions[k].action = Action::Cull;
-            plan_.decisions[k].reason = Reason::InsideNeverEndingLayer;
-            plan_.decisions[k].ref = static_cast<int>(i);
-          }
-        } else if (is_bounded(c.layer.op) && !(c.layer.opacity > 0)) {
-          cull(i, Reason::LayerOpacityZero);
-        } else if (is_bounded(c.layer.op) && d.bounds.empty()) {
-          cull(i, Reason::LayerOutside);
-        }
-        continue;
+      if (is_bounded(c.layer.op) && !(c.layer.opacity > 0)) {
+        cull(i, Reason::LayerOpacityZero);
+      } else if (is_bounded(c.layer.op) && plan_.decisions[i].bounds.empty()) {
+        cull(i, Reason::LayerOutside);
       }
-      if (c.kind == Kind::PutPixels) {
-        if (d.bounds.empty()) cull(i, Reason::OutsideCanvas);
-        continue;
-      }
-      if (d.bounds.empty()) {
-        cull(i, intersect(unclipped_[i], canvas_).empty() ? Reason::OutsideCanvas : Reason::OutsideClip);
-        continue;
-      }
-      if (!is_bounded(s.op)) continue;  // changes the clip region whatever it draws
-      const Paint& paint = c.kind == Kind::Stroke ? s.stroke_paint : s.fill_paint;
-      if (!(s.global_alpha > 0)) {
-        cull(i, Reason::GlobalAlphaZero);
-      } else if (c.kind != Kind::DrawImage && paint.is_invisible()) {
-        cull(i, Reason::TransparentPaint);
-      } else if (c.kind == Kind::Fill && !casts_shadow(s)) {
-        Rect r;
-        if (device_box(c.path, c.to_device, r) && (r.width() == 0 || r.height() == 0)) cull(i, Reason::ZeroArea);
-      } else if (c.kind == Kind::Stroke && !(s.line.width > 0)) {
-        cull(i, Reason::ZeroWidth);
-      }
+    }
+  }
+
+  /// Culls a drawing call that is outside, invisible or empty.
+  void cull_call(std::size_t i) {
+    const SceneCommand& c = scene_.commands[i];
+    const PlanDecision& d = plan_.decisions[i];
+    if (c.kind == Kind::Fxaa) return;
+    if (c.kind == Kind::PutPixels) {
+      if (d.bounds.empty()) cull(i, Reason::OutsideCanvas);
+      return;
+    }
+    if (d.bounds.empty()) {
+      cull(i, intersect(unclipped_[i], canvas_).empty() ? Reason::OutsideCanvas : Reason::OutsideClip);
+      return;
+    }
+    const SceneState& s = c.state;
+    if (!is_bounded(s.op)) return;  // changes the clip region whatever it draws
+    const Paint& paint = c.kind == Kind::Stroke ? s.stroke_paint : s.fill_paint;
+    if (!(s.global_alpha > 0)) {
+      cull(i, Reason::GlobalAlphaZero);
+    } else if (c.kind != Kind::DrawImage && paint.is_invisible()) {
+      cull(i, Reason::TransparentPaint);
+    } else if (c.kind == Kind::Fill && !casts_shadow(s)) {
+      const Rect& r = device_[i];
+      if (r.width() == 0 || r.height() == 0) cull(i, Reason::ZeroArea);
+    } else if (c.kind == Kind::Stroke && !(s.line.width > 0)) {
+      cull(i, Reason::ZeroWidth);
     }
   }
 
@@ -333,8 +369,8 @@ class Planner {
     if (s.op == CompositeOp::Clear || (s.op == CompositeOp::Copy && !casts_shadow(s))) {
       return clip;  // the whole clip region is replaced
     }
-    Rect r;
-    if (!device_rectangle(c.path, c.to_device, r)) return {};
+    if (!is_rect_[j]) return {};
+    const Rect& r = device_[j];
     if (c.rule != FillRule::NonZero && c.rule != FillRule::EvenOdd && c.rule != FillRule::NonExterior) return {};
     const bool opaque = s.global_alpha * d.alpha_scale >= 1 && s.fill_paint.is_opaque();
     const bool erases = s.op == CompositeOp::DestinationOut && opaque;  // clear_rect
@@ -343,21 +379,28 @@ class Planner {
   }
 
   void cull_hidden() {
+    if (!may_overwrite_) return;  // nothing overwrites anything: nothing is hidden
     // Backwards: each level (layer instance, or -1 for the target) keeps the largest regions that later
     // commands overwrite. A post-filter reads neighbouring pixels, so nothing before it is hidden by what after.
     constexpr std::size_t kOccluders = 8;
-    std::unordered_map<int, std::vector<std::pair<PixelBox, int>>> occluders;
+    // One list per level: slot 0 for the target, 1 + the layer's number for each layer.
+    std::vector<int> slot(scene_.commands.size(), 0);
+    int layers = 0;
+    for (std::size_t k = 0; k < scene_.commands.size(); ++k) {
+      if (kind_[k] == Kind::BeginLayer) slot[k] = ++layers;
+    }
+    std::vector<std::vector<std::pair<PixelBox, int>>> occluders(static_cast<std::size_t>(layers) + 1);
     for (std::size_t k = scene_.commands.size(); k-- > 0;) {
-      const SceneCommand& c = scene_.commands[k];
-      if (c.kind == Kind::Fxaa) {
-        occluders.clear();
+      const Kind kind = kind_[k];
+      if (kind == Kind::Fxaa) {
+        for (auto& list : occluders) list.clear();
         continue;
       }
-      if (c.kind == Kind::EndLayer) continue;
+      if (kind == Kind::EndLayer) continue;
       const int level = layer_of_[k];
       PlanDecision& d = plan_.decisions[k];
-      auto& mine = occluders[level];
-      if (d.action == Action::Draw && !d.bounds.empty() && c.kind != Kind::PutPixels) {
+      auto& mine = occluders[level < 0 ? 0 : slot[level]];
+      if (d.action == Action::Draw && !mine.empty() && !d.bounds.empty() && kind != Kind::PutPixels) {
         for (const auto& [region, by] : mine) {
           if (contains(region, d.bounds)) {
             cull(k, Reason::Hidden, by);
@@ -365,14 +408,15 @@ class Planner {
           }
         }
       }
-      if (c.kind == Kind::BeginLayer) {
-        occluders.erase(static_cast<int>(k));  // its inside is done
+      if (kind == Kind::BeginLayer) {
+        occluders[slot[k]].clear();  // its inside is done
         continue;
       }
+      if (!may_overwrite_at_[k]) continue;
       const PixelBox region = overwritten_by(k);
       if (region.empty()) continue;
       // put_pixels writes the target even inside a layer: it hides what came before at the top level.
-      auto& list = c.kind == Kind::PutPixels ? occluders[-1] : mine;
+      auto& list = kind == Kind::PutPixels ? occluders[0] : mine;
       list.emplace_back(region, static_cast<int>(k));
       std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.first.area() > b.first.area(); });
       if (list.size() > kOccluders) list.pop_back();
@@ -385,7 +429,7 @@ class Planner {
     // Innermost first, so an outer layer sees what became of the inner ones.
     std::vector<std::size_t> begins;
     for (std::size_t i = 0; i < scene_.commands.size(); ++i) {
-      if (scene_.commands[i].kind == Kind::BeginLayer && end_of_[i] >= 0) begins.push_back(i);
+      if (kind_[i] == Kind::BeginLayer && end_of_[i] >= 0) begins.push_back(i);
     }
     std::sort(begins.begin(), begins.end(), [&](std::size_t a, std::size_t b) { return end_of_[a] - a < end_of_[b] - b; });
     for (const std::size_t b : begins) plan_layer(b);
@@ -485,19 +529,16 @@ class Planner {
 
   // ---- coverage ----
 
-  void mark_aliased() {
-    for (std::size_t i = 0; i < scene_.commands.size(); ++i) {
-      const SceneCommand& c = scene_.commands[i];
-      PlanDecision& d = plan_.decisions[i];
-      // Not with a shadow: the shadow pass draws the shape moved by a fractional offset.
-      if (d.action != Action::Draw || c.kind != Kind::Fill || c.state.aa == AntiAlias::None || casts_shadow(c.state)) {
-        continue;
-      }
-      Rect r;
-      if (device_rectangle(c.path, c.to_device, r) && whole(r.x0) && whole(r.y0) && whole(r.x1) && whole(r.y1)) {
-        d.aliased = true;
-      }
+  /// A fill that is a rectangle with whole-pixel corners needs no antialiasing work: its coverage is 0 or 1.
+  /// Not with a shadow: the shadow pass draws the shape moved by a fractional offset.
+  void mark_aliased(std::size_t i) {
+    const SceneCommand& c = scene_.commands[i];
+    PlanDecision& d = plan_.decisions[i];
+    if (d.action != Action::Draw || c.kind != Kind::Fill || c.state.aa == AntiAlias::None || casts_shadow(c.state)) {
+      return;
     }
+    const Rect& r = device_[i];
+    if (is_rect_[i] && whole(r.x0) && whole(r.y0) && whole(r.x1) && whole(r.y1)) d.aliased = true;
   }
 
   // ---- summary ----
@@ -508,16 +549,16 @@ class Planner {
     plan_.tiles_y = (canvas_.y1 + ts - 1) / ts;
     plan_.touched_tiles.assign(static_cast<std::size_t>(plan_.tiles_x) * plan_.tiles_y, 0);
     for (std::size_t i = 0; i < scene_.commands.size(); ++i) {
-      const SceneCommand& c = scene_.commands[i];
+      const Kind kind = kind_[i];
       PlanDecision& d = plan_.decisions[i];
       if (d.action == Action::Cull) {
         plan_.culled++;
-        if (c.kind != Kind::BeginLayer && c.kind != Kind::EndLayer) plan_.pixels_not_composited += d.bounds.area();
+        if (kind != Kind::BeginLayer && kind != Kind::EndLayer) plan_.pixels_not_composited += d.bounds.area();
         continue;
       }
       if (d.aliased) plan_.aliased++;
-      if (c.kind == Kind::BeginLayer) continue;
-      if (c.kind == Kind::EndLayer && d.action == Action::Draw) d.reason = Reason::LayerComposited;
+      if (kind == Kind::BeginLayer) continue;
+      if (kind == Kind::EndLayer && d.action == Action::Draw) d.reason = Reason::LayerComposited;
       const PixelBox box = intersect(d.bounds, canvas_);
       if (box.empty()) continue;
       for (int ty = box.y0 / ts; ty <= (box.y1 - 1) / ts; ++ty) {
@@ -534,6 +575,12 @@ class Planner {
   std::vector<int> layer_of_;  // the BeginLayer a command is inside (-1: none); EndLayer: its own BeginLayer
   std::vector<int> end_of_;    // BeginLayer: its EndLayer (-1: never ended)
   std::vector<PixelBox> unclipped_;  // the box of each call before its clip
+  std::vector<Rect> device_;         // fills: the device box of the path's points (the rectangle itself)
+  std::vector<std::uint8_t> is_rect_;  // fills: the path is one axis-aligned rectangle in device space
+  std::vector<std::uint8_t> may_overwrite_at_;  // the call may overwrite pixels (checked by overwritten_by)
+  bool may_overwrite_ = false;
+  std::vector<Kind> kind_;           // each command's kind, read without touching the command
+  std::vector<int> open_at_end_;     // layers never ended       // some call can overwrite pixels (an occlusion pass is worth running)
   std::unordered_map<const SceneClip*, PixelBox> clip_boxes_;
 };
 
