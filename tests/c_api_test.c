@@ -481,6 +481,36 @@ static void test_text(void) {
 }
 #endif
 
+/* Flood fill: a ring drawn aliased splits the canvas; the fill stays on its side, 4-connected leaks through no
+ * diagonal gap, boundary-defined fills up to the ring. */
+static void test_flood_fill(void) {
+  vr_image* img = NULL;
+  vr_canvas* c = fresh(20, 20, &img);
+  vr_canvas_set_antialias(c, VR_AA_NONE);
+  vr_canvas_set_fill_rgba(c, 0, 0, 0, 1);
+  vr_canvas_fill_rect(c, 5, 5, 10, 1);
+  vr_canvas_fill_rect(c, 5, 14, 10, 1);
+  vr_canvas_fill_rect(c, 5, 5, 1, 10);
+  vr_canvas_fill_rect(c, 14, 5, 1, 10);
+  /* inside the ring: 8 x 8 transparent pixels */
+  CHECK(vr_canvas_flood_fill(c, 9, 9, 1, 0, 0, 1, 4, 0) == 64);
+  CHECK(pixel_is(img, 6, 6, 255, 0, 0, 255, 0));
+  CHECK(pixel_is(img, 2, 2, 0, 0, 0, 0, 0));
+  CHECK(pixel_is(img, 5, 5, 0, 0, 0, 255, 0));
+  /* outside: everything but the ring and its inside */
+  CHECK(vr_canvas_flood_fill_to_boundary(c, 0, 0, 0, 0, 1, 1, 0, 0, 0, 1, 8, 0) == 400 - 100);
+  CHECK(pixel_is(img, 2, 2, 0, 0, 255, 255, 0));
+  CHECK(pixel_is(img, 6, 6, 255, 0, 0, 255, 0));
+  /* errors and ignored values */
+  CHECK(vr_canvas_flood_fill(c, 0, 0, 1, 1, 1, 1, 6, 0) == -1 && error_mentions("connectivity"));
+  CHECK(vr_canvas_flood_fill(c, 0, 0, 1, 1, 1, 1, 4, 2) == -1 && error_mentions("tolerance"));
+  CHECK(vr_canvas_flood_fill(c, 0, 0, NAN, 1, 1, 1, 4, 0) == 0);
+  CHECK(vr_canvas_flood_fill(c, -3, 50, 1, 1, 1, 1, 4, 0) == 0);
+  CHECK(vr_canvas_flood_fill(NULL, 0, 0, 1, 1, 1, 1, 4, 0) == -1);
+  vr_canvas_destroy(c);
+  vr_image_destroy(img);
+}
+
 int main(int argc, char** argv) {
   const char* work = argc > 1 ? argv[1] : ".";
   test_images(work);
@@ -489,6 +519,7 @@ int main(int argc, char** argv) {
   test_state_clip_transform();
   test_composite_and_layers();
   test_paints_and_images();
+  test_flood_fill();
 #if VRASTER_WITH_TEXT
   test_text();
 #endif

@@ -359,3 +359,45 @@ TEST(Scene, RecordingCanvasDrawsNothingAndReadsTransparentPixels) {
   Scene bad;
   EXPECT_THROW({ Canvas c(bad); }, Error);  // a 0 x 0 scene
 }
+
+TEST(ScenePlanner, AFloodFillReadsWhatCameBefore) {
+  const Draw draw = [](Canvas& c) {
+    c.set_anti_alias(AntiAlias::None);
+    c.fill_rect(10, 0, 2, 32);                                      // #0: a wall the fill stops at
+    c.flood_fill(2, 2, Color{1, 0, 0, 1});                           // #1: fills left of the wall only
+    c.set_fill_color({0, 0, 1, 1});
+    c.fill_rect(8, 0, 8, 32);                                       // #2: covers the wall afterwards
+  };
+  const Scene scene = record(32, 32, draw);
+  const ScenePlan plan = plan_scene(scene);
+  EXPECT_EQ(plan.decisions[0].action, Action::Draw);  // hidden by #2, but #1 reads it
+  const Image planned = replayed(scene, &plan);
+  EXPECT_EQ(max_difference(direct(32, 32, draw), planned), 0);
+  EXPECT_EQ(planned.pixel(2, 2)[0], 255);
+  EXPECT_EQ(planned.pixel(20, 2)[3], 0);  // right of the wall: not filled
+}
+
+TEST(CanvasFloodFill, EqualsTheLibraryFillOnTheTarget) {
+  Image a(24, 24), b(24, 24);
+  for (Image* img : {&a, &b}) {
+    img->clear(Color::transparent());
+    Canvas c(*img);
+    c.set_anti_alias(AntiAlias::None);
+    c.begin_path();
+    c.arc(12, 12, 8, 0, 6.283185307179586);
+    c.set_line_width(1.5);
+    c.stroke();
+  }
+  SeedFillOptions options;
+  options.connectivity = Connectivity::Eight;
+  options.tolerance = 0.1;
+  const std::int64_t expected = flood_fill(a, 12, 12, Color{0, 1, 0, 1}, options);
+  Canvas c(b);
+  c.translate(100, 100);  // device pixels: the transform does not apply
+  EXPECT_EQ(c.flood_fill(12, 12, Color{0, 1, 0, 1}, options), expected);
+  EXPECT_GT(expected, 100);
+  EXPECT_EQ(max_difference(a, b), 0);
+  EXPECT_EQ(c.flood_fill(12, 12, Color{NAN, 1, 0, 1}, options), 0);
+  options.tolerance = 2;
+  EXPECT_THROW(c.flood_fill(12, 12, Color{0, 0, 0, 1}, options), Error);
+}

@@ -22,6 +22,7 @@
 #include "vraster/paint.hpp"
 #include "vraster/path.hpp"
 #include "vraster/raster.hpp"
+#include "vraster/seed_fill.hpp"
 #include "vraster/stroke.hpp"
 
 namespace vraster {
@@ -168,6 +169,11 @@ class Canvas {
   void put_pixels(const Image& pixels, int x, int y);
   /// FXAA over the target (a post-filter: call it when the drawing is done).
   void apply_fxaa();
+  /// Seed (flood) fill of the target image from device pixel (x, y) (vraster/seed_fill.hpp): every pixel of the
+  /// region gets `fill`, replacing it (as put_pixels: transform, clip, alpha, operator and layers do not apply).
+  /// Returns the pixels written (0 for a seed outside the canvas or a non-finite colour); throws vraster::Error
+  /// for a tolerance outside [0, 1]. While recording it returns 0.
+  std::int64_t flood_fill(int x, int y, Color fill, const SeedFillOptions& options = {});
 
   // ---- scenes (vraster/scene.hpp) ----
   /// Replays a recorded scene in device space (its recorded transforms are used as they are), under this canvas's

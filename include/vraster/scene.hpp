@@ -59,6 +59,7 @@ struct SceneCommand {
     BeginLayer,  ///< begin_layer(layer)
     EndLayer,    ///< end_layer()
     Fxaa,        ///< apply_fxaa(): a post-filter over the whole target
+    FloodFill,   ///< flood_fill() from (x, y) with state.fill_paint's colour and `seed`
   };
   Kind kind = Kind::Fill;
   Path path;
@@ -70,6 +71,7 @@ struct SceneCommand {
   Rect src, dst;
   int x = 0, y = 0;
   LayerOptions layer;
+  SeedFillOptions seed;
 };
 
 /// A list of draw calls on a canvas of a given size, replayable onto any canvas (Canvas::draw_scene).

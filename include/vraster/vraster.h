@@ -256,6 +256,18 @@ VR_API int vr_canvas_is_point_in_path(const vr_canvas* c, double x, double y, vr
 VR_API int vr_canvas_is_point_in_stroke(const vr_canvas* c, double x, double y);
 /** FXAA over the whole target (a post-filter: call it when the drawing is done). */
 VR_API int vr_canvas_apply_fxaa(vr_canvas* c);
+/** Seed (flood) fill of the target from device pixel (x, y), by scanline spans (no recursion): the region of
+ *  pixels whose premultiplied channels are all within `tolerance` (0..1) of the seed pixel's, 4- or 8-connected
+ *  (`connectivity` 4 or 8), gets the colour (r, g, b, a: straight, 0..1), replacing it (transform, clip, alpha
+ *  and operator do not apply). Returns the number of pixels written (0 for a seed outside the canvas or a
+ *  non-finite colour), -1 on failure (connectivity not 4 or 8, tolerance outside [0, 1]). */
+VR_API long long vr_canvas_flood_fill(vr_canvas* c, int x, int y, double r, double g, double b, double a,
+                                      int connectivity, double tolerance);
+/** The boundary-defined form: the region grows from (x, y) up to pixels within `tolerance` of the boundary colour
+ *  (br, bg, bb, ba: straight, 0..1). Same return values. */
+VR_API long long vr_canvas_flood_fill_to_boundary(vr_canvas* c, int x, int y, double r, double g, double b, double a,
+                                                  double br, double bg, double bb, double ba, int connectivity,
+                                                  double tolerance);
 
 /* ---- composite operator names ---- */
 

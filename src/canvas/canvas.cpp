@@ -470,6 +470,22 @@ void Canvas::put_pixels(const Image& pixels, int x, int y) {
   }
 }
 
+std::int64_t Canvas::flood_fill(int x, int y, Color fill, const SeedFillOptions& options) {
+  if (!finite({fill.r, fill.g, fill.b, fill.a})) return 0;
+  Impl& s = *impl_;
+  if (s.recording) {
+    if (!(options.tolerance >= 0 && options.tolerance <= 1)) throw Error("flood_fill: the tolerance must be in [0, 1]");
+    SceneCommand& c = s.record(SceneCommand::Kind::FloodFill);
+    c.state.fill_paint = Paint::solid(fill);
+    c.x = x;
+    c.y = y;
+    c.seed = options;
+    return 0;
+  }
+  return s.image8 ? vraster::flood_fill(*s.image8, x, y, fill, options)
+                  : vraster::flood_fill(*s.image16, x, y, fill, options);
+}
+
 void Canvas::apply_fxaa() {
   if (impl_->recording) {
     impl_->record(SceneCommand::Kind::Fxaa);

@@ -145,6 +145,9 @@ void Canvas::draw_scene(const Scene& scene, const ScenePlan* plan) {
       case SceneCommand::Kind::Fxaa:
         apply_fxaa();
         break;
+      case SceneCommand::Kind::FloodFill:
+        flood_fill(c.x, c.y, c.state.fill_paint.color(), c.seed);
+        break;
     }
   }
   // A layer the scene never ended never shows (as on the canvas it was recorded from): it is discarded.

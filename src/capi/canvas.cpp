@@ -369,6 +369,39 @@ int vr_canvas_is_point_in_stroke(const vr_canvas* c, double x, double y) {
   if (!present(c, __func__, "canvas")) return -1;
   return guard(-1, [&] { return c->canvas.is_point_in_stroke(x, y) ? 1 : 0; });
 }
+namespace {
+long long flood(vr_canvas* c, const char* function, int x, int y, Color fill, int connectivity,
+                SeedFillOptions options) {
+  if (!vraster::capi::present(c, function, "canvas")) return -1;
+  if (connectivity != 4 && connectivity != 8) {
+    char message[128];
+    std::snprintf(message, sizeof message, "%s: connectivity must be 4 or 8, not %d", function, connectivity);
+    set_error(message);
+    return -1;
+  }
+  options.connectivity = connectivity == 4 ? Connectivity::Four : Connectivity::Eight;
+  return guard(-1LL, [&] { return static_cast<long long>(c->canvas.flood_fill(x, y, fill, options)); });
+}
+}  // namespace
+
+long long vr_canvas_flood_fill(vr_canvas* c, int x, int y, double r, double g, double b, double a, int connectivity,
+                               double tolerance) {
+  SeedFillOptions options;
+  options.tolerance = tolerance;
+  return flood(c, __func__, x, y, Color{float(r), float(g), float(b), float(a)}, connectivity, options);
+}
+
+long long vr_canvas_flood_fill_to_boundary(vr_canvas* c, int x, int y, double r, double g, double b, double a,
+                                           double br, double bg, double bb, double ba, int connectivity,
+                                           double tolerance) {
+  SeedFillOptions options;
+  options.region = SeedRegion::Boundary;
+  options.boundary = Color{float(br), float(bg), float(bb), float(ba)};
+  options.tolerance = tolerance;
+  if (!std::isfinite(br) || !std::isfinite(bg) || !std::isfinite(bb) || !std::isfinite(ba)) return 0;
+  return flood(c, __func__, x, y, Color{float(r), float(g), float(b), float(a)}, connectivity, options);
+}
+
 int vr_canvas_apply_fxaa(vr_canvas* c) {
   return with_canvas(c, __func__, [](vr_canvas& s) { s.canvas.apply_fxaa(); });
 }

@@ -231,6 +231,7 @@ class Planner {
         if (c.image) box = {c.x, c.y, c.x + c.image->width, c.y + c.image->height};
         break;
       case Kind::Fxaa:
+      case Kind::FloodFill:
         return canvas_;
       case Kind::BeginLayer:
       case Kind::EndLayer:
@@ -273,7 +274,7 @@ class Planner {
       if (c.kind == Kind::PutPixels) {
         may_overwrite_ = may_overwrite_at_[i] = true;
         d.bounds = intersect(unclipped_[i], canvas_);  // put_pixels ignores clips and layers
-      } else if (c.kind == Kind::Fxaa) {
+      } else if (c.kind == Kind::Fxaa || c.kind == Kind::FloodFill) {
         d.bounds = canvas_;
       } else if (!is_bounded(c.state.op)) {
         d.bounds = intersect(clip_box(c.clip.get()), region);  // the whole clip region changes
@@ -312,7 +313,7 @@ class Planner {
       cull(b, Reason::LayerNeverEnds);
       // Everything after it is inside it, except what writes the target itself.
       for (std::size_t k = b + 1; k < scene_.commands.size(); ++k) {
-        if (kind_[k] == Kind::PutPixels || kind_[k] == Kind::Fxaa) continue;
+        if (kind_[k] == Kind::PutPixels || kind_[k] == Kind::Fxaa || kind_[k] == Kind::FloodFill) continue;
         plan_.decisions[k].action = Action::Cull;
         plan_.decisions[k].reason = Reason::InsideNeverEndingLayer;
         plan_.decisions[k].ref = b;
@@ -333,7 +334,7 @@ class Planner {
   void cull_call(std::size_t i) {
     const SceneCommand& c = scene_.commands[i];
     const PlanDecision& d = plan_.decisions[i];
-    if (c.kind == Kind::Fxaa) return;
+    if (c.kind == Kind::Fxaa || c.kind == Kind::FloodFill) return;
     if (c.kind == Kind::PutPixels) {
       if (d.bounds.empty()) cull(i, Reason::OutsideCanvas);
       return;
@@ -392,7 +393,7 @@ class Planner {
     std::vector<std::vector<std::pair<PixelBox, int>>> occluders(static_cast<std::size_t>(layers) + 1);
     for (std::size_t k = scene_.commands.size(); k-- > 0;) {
       const Kind kind = kind_[k];
-      if (kind == Kind::Fxaa) {
+      if (kind == Kind::Fxaa || kind == Kind::FloodFill) {  // they read the pixels around
         for (auto& list : occluders) list.clear();
         continue;
       }
@@ -453,7 +454,7 @@ class Planner {
         if (!inner_kept.empty()) inner_kept.pop_back();
         continue;
       }
-      if (inner.kind == Kind::PutPixels || inner.kind == Kind::Fxaa) plain = false;
+      if (inner.kind == Kind::PutPixels || inner.kind == Kind::Fxaa || inner.kind == Kind::FloodFill) plain = false;
       if (inner.kind == Kind::BeginLayer) {
         if (id.action == Action::Draw && inner.layer.op != CompositeOp::SourceOver) plain = false;
         nested = nested || id.action == Action::Draw;
@@ -595,6 +596,7 @@ std::string drawn_sentence(const SceneCommand& c, const PlanDecision& d) {
   switch (c.kind) {
     case Kind::PutPixels: return "drawn: pixels stored as given";
     case Kind::Fxaa: return "drawn: post-filter over the whole target";
+    case Kind::FloodFill: return "drawn: flood fill (reads the pixels drawn before)";
     default: break;
   }
   std::string why = "drawn";
@@ -625,6 +627,7 @@ const char* kind_name(Kind k) {
     case Kind::BeginLayer: return "layer";
     case Kind::EndLayer: return "end";
     case Kind::Fxaa: return "fxaa";
+    case Kind::FloodFill: return "flood";
   }
   return "?";
 }
