@@ -322,7 +322,13 @@ class Drawer {
       // SVG 2: the focal circle (fx, fy, fr) is where offset 0 starts, the end circle (cx, cy, r) offset 1.
       out = vraster::Paint::radial({g.fx, g.fy}, std::max(0.0, g.fr), {g.cx, g.cy}, g.r);
     }
-    for (const GradientStop& s : g.stops) out.add_stop(s.offset, s.color);
+    // Stops with equal offsets make a step. The canvas pads below offset 0 with the colour at 0, which is the last
+    // of a leading run of equal offsets; resvg pads with the first: the run's later stops move up by a hair.
+    const std::size_t n = g.stops.size();
+    std::size_t run = 1;
+    while (run < n && g.stops[run].offset == g.stops[0].offset) ++run;
+    const double lifted = std::min(g.stops[0].offset + 1e-6, run < n ? g.stops[run].offset : 1.0);
+    for (std::size_t i = 0; i < n; ++i) out.add_stop(i > 0 && i < run ? lifted : g.stops[i].offset, g.stops[i].color);
     out.set_extend(g.spread == Spread::Reflect ? Extend::Reflect
                    : g.spread == Spread::Repeat ? Extend::Repeat
                                                 : Extend::Pad);
@@ -371,8 +377,14 @@ class Drawer {
     }
     vraster::Paint out = vraster::Paint::pattern(std::shared_ptr<const Image>(image));
     out.set_extend(Extend::Repeat);
-    out.set_filter(ImageFilter::Bilinear);
-    out.set_transform(pat.transform * Affine::translate(tile.x0, tile.y0) * Affine::scale(tw / iw, th / ih));
+    const Affine to_user = pat.transform * Affine::translate(tile.x0, tile.y0) * Affine::scale(tw / iw, th / ih);
+    out.set_transform(to_user);
+    // A tile drawn at exactly device resolution and not rotated is copied pixel for pixel: filtering would only
+    // blur its edges (a tile starting at half a pixel would smear every seam).
+    const Affine to_device = canvas_.get_transform() * to_user;
+    const bool pixel_exact = std::abs(to_device.a - 1) < 1e-9 && std::abs(to_device.d - 1) < 1e-9 &&
+                             to_device.b == 0 && to_device.c == 0;
+    out.set_filter(pixel_exact ? ImageFilter::Nearest : ImageFilter::Bilinear);
     out.set_opacity(opacity);
     return out;
   }
