@@ -22,8 +22,10 @@ namespace {
 
 // Offscreen images in flight at once (patterns in patterns, masks on masks): deeper content draws nothing.
 constexpr int kMaxNesting = 12;
-// Largest pattern tile, in pixels (the tile is drawn at device resolution, then scaled down past this).
+// Largest pattern tile, in pixels: 2^24, and 4 times the canvas (past that a tile is drawn below device
+// resolution: so large a tile shows one corner at most).
 constexpr double kMaxTilePixels = double(1 << 24);
+constexpr double kMinTileCap = double(1 << 16);
 
 bool usable_box(const Rect& r) {
   return r.width() > 0 && r.height() > 0 && std::isfinite(r.width()) && std::isfinite(r.height());
@@ -352,8 +354,9 @@ class Drawer {
     if (!std::isfinite(iw) || !std::isfinite(ih)) return std::nullopt;
     iw = std::clamp(iw, 1.0, double(kMaxImageSide));
     ih = std::clamp(ih, 1.0, double(kMaxImageSide));
-    if (iw * ih > kMaxTilePixels) {
-      const double k = std::sqrt(kMaxTilePixels / (iw * ih));
+    const double cap = std::min(kMaxTilePixels, std::max(kMinTileCap, 4.0 * canvas_.width() * canvas_.height()));
+    if (iw * ih > cap) {
+      const double k = std::sqrt(cap / (iw * ih));
       iw = std::max(1.0, std::floor(iw * k));
       ih = std::max(1.0, std::floor(ih * k));
     }
