@@ -161,6 +161,9 @@ class Canvas {
   void put_pixels(const Image& pixels, int x, int y);
   /// FXAA over the target (a post-filter: call it when the drawing is done).
   void apply_fxaa();
+  /// How many fills so far went over the exact-coverage work limit and were drawn analytic instead
+  /// (Rasterizer::exact_fallbacks), so that callers can warn.
+  std::uint64_t exact_fallbacks() const;
 
   // ---- hit testing (user coordinates mapped by the current transform) ----
   bool is_point_in_path(double x, double y) const;

@@ -457,6 +457,8 @@ void Canvas::put_pixels(const Image& pixels, int x, int y) {
   }
 }
 
+std::uint64_t Canvas::exact_fallbacks() const { return impl_->renderer.rasterizer().exact_fallbacks(); }
+
 void Canvas::apply_fxaa() {
   if (impl_->image8) {
     fxaa(*impl_->image8);

@@ -202,7 +202,11 @@ void render_tree(const svg::Tree& tree, const RenderArgs& a) {
   settings.aa = a.settings.aa;
   settings.tolerance = a.settings.tolerance;
   settings.rule_override = a.settings.rule_override;
-  render_frames<T>(w, h, a, [&](BasicImage<T>& image) { svg::render_tree(tree, image, settings); });
+  std::uint64_t fallbacks = 0;
+  render_frames<T>(w, h, a, [&](BasicImage<T>& image) {
+    fallbacks += svg::render_tree(tree, image, settings).exact_fallbacks;
+  });
+  warn_about_exact_fallbacks(fallbacks);
 }
 
 int run_render(int argc, char** argv) {

@@ -116,8 +116,9 @@ class Drawer {
  public:
   /// `clip_mode`: drawing a clipPath's content (paths filled opaque with their clip-rule; paint, stroke,
   /// opacity, masks and images have no effect; clip-path on children does).
-  Drawer(Canvas& canvas, const DrawSettings& settings, const std::string& file, int nesting, bool clip_mode)
-      : canvas_(canvas), settings_(settings), file_(file), nesting_(nesting), clip_mode_(clip_mode) {}
+  Drawer(Canvas& canvas, const DrawSettings& settings, const std::string& file, DrawStats& stats, int nesting,
+         bool clip_mode)
+      : canvas_(canvas), settings_(settings), file_(file), stats_(stats), nesting_(nesting), clip_mode_(clip_mode) {}
 
   void group(const Group& g) {
     if (!clip_mode_ && !(g.opacity > 0)) return;
@@ -245,7 +246,8 @@ class Drawer {
     const Area area = device_area(*content, ctm, canvas_.width(), canvas_.height());
     if (area.empty()) return std::nullopt;
     Offscreen o = offscreen(area, ctm * *m);
-    Drawer(*o.canvas, settings_, file_, nesting_ + 1, true).group(*clip.content);
+    Drawer(*o.canvas, settings_, file_, stats_, nesting_ + 1, true).group(*clip.content);
+    stats_.exact_fallbacks += o.canvas->exact_fallbacks();
     Coverage out{o.image, area.x0, area.y0};
     if (clip.clip) {
       const std::optional<Coverage> inner = clip_coverage(*clip.clip, bbox, ctm);
@@ -270,7 +272,8 @@ class Drawer {
     r.add_rect(rect);
     o.canvas->clip(r, FillRule::NonZero);
     if (mask.content_units == Units::ObjectBoundingBox) o.canvas->transform(box_transform(*bbox));
-    Drawer(*o.canvas, settings_, file_, nesting_ + 1, false).group(*mask.content);
+    Drawer(*o.canvas, settings_, file_, stats_, nesting_ + 1, false).group(*mask.content);
+    stats_.exact_fallbacks += o.canvas->exact_fallbacks();
     // Luminance of the premultiplied colour = luminance of the colour times its alpha (sRGB coefficients).
     Image& img = *o.image;
     for (std::size_t i = 0; i < img.data.size(); i += 4) {
@@ -376,7 +379,8 @@ class Drawer {
       } else if (pat.content_units == Units::ObjectBoundingBox) {
         c.scale(bbox.width(), bbox.height());
       }
-      Drawer(c, settings_, file_, nesting_ + 1, false).group(*pat.content);
+      Drawer(c, settings_, file_, stats_, nesting_ + 1, false).group(*pat.content);
+      stats_.exact_fallbacks += c.exact_fallbacks();
     }
     vraster::Paint out = vraster::Paint::pattern(std::shared_ptr<const Image>(image));
     out.set_extend(Extend::Repeat);
@@ -464,18 +468,23 @@ class Drawer {
   Canvas& canvas_;
   const DrawSettings& settings_;
   const std::string& file_;
+  DrawStats& stats_;
   int nesting_;
   bool clip_mode_;
 };
 
 }  // namespace
 
-void draw_tree(const Tree& tree, Canvas& canvas, const DrawSettings& settings) {
+DrawStats draw_tree(const Tree& tree, Canvas& canvas, const DrawSettings& settings) {
+  DrawStats stats;
+  const std::uint64_t fallbacks_before = canvas.exact_fallbacks();
   canvas.save();
   canvas.set_anti_alias(settings.aa);
   canvas.set_tolerance(settings.tolerance);
-  Drawer(canvas, settings, tree.file, 0, false).group(tree.root);
+  Drawer(canvas, settings, tree.file, stats, 0, false).group(tree.root);
   canvas.restore();
+  stats.exact_fallbacks += canvas.exact_fallbacks() - fallbacks_before;
+  return stats;
 }
 
 std::pair<int, int> tree_output_size(const Tree& tree, int width, int height) {
@@ -489,14 +498,14 @@ std::pair<int, int> tree_output_size(const Tree& tree, int width, int height) {
 }
 
 template <class T>
-void render_tree(const Tree& tree, BasicImage<T>& image, const DrawSettings& settings) {
+DrawStats render_tree(const Tree& tree, BasicImage<T>& image, const DrawSettings& settings) {
   Canvas canvas(image);
   if (tree.width > 0 && tree.height > 0) canvas.scale(image.width / tree.width, image.height / tree.height);
-  draw_tree(tree, canvas, settings);
+  return draw_tree(tree, canvas, settings);
 }
 
-template void render_tree<std::uint8_t>(const Tree&, Image&, const DrawSettings&);
-template void render_tree<std::uint16_t>(const Tree&, Image16&, const DrawSettings&);
+template DrawStats render_tree<std::uint8_t>(const Tree&, Image&, const DrawSettings&);
+template DrawStats render_tree<std::uint16_t>(const Tree&, Image16&, const DrawSettings&);
 
 Tree load_svg_tree(const std::string& path) {
   const std::vector<std::uint8_t> bytes = read_file_limited(path, kMaxSvgFileBytes, "SVG file");

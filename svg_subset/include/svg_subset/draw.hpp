@@ -2,6 +2,7 @@
 // paint servers (gradients, patterns), clip paths, masks, group opacity as a layer, mix-blend-mode, isolation.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
@@ -21,10 +22,16 @@ struct DrawSettings {
   std::optional<FillRule> rule_override;  ///< replaces the file's fill-rule (not clip-rule)
 };
 
+/// What a drawing reports back.
+struct DrawStats {
+  /// Fills that went over the exact-coverage work limit and were drawn analytic (callers warn about them).
+  std::uint64_t exact_fallbacks = 0;
+};
+
 /// Draws `tree` with the canvas's current transform as the viewport's (the tree's root maps its user space to
 /// CSS px: scale the canvas first to draw at another size). The canvas state is the same afterwards. A core
 /// limit reached while drawing one element (vraster::Error) is rethrown as a ParseError at that element.
-void draw_tree(const Tree& tree, Canvas& canvas, const DrawSettings& settings = {});
+DrawStats draw_tree(const Tree& tree, Canvas& canvas, const DrawSettings& settings = {});
 
 /// The pixel size of the tree drawn at its intrinsic size (rounded up), or at a requested width and/or height
 /// (0 = not given) as output_size() computes it for a Document.
@@ -32,7 +39,7 @@ std::pair<int, int> tree_output_size(const Tree& tree, int width = 0, int height
 
 /// Draws `tree` over `image` (not cleared first), scaled from the intrinsic size to the image size on each axis.
 template <class T>
-void render_tree(const Tree& tree, BasicImage<T>& image, const DrawSettings& settings = {});
+DrawStats render_tree(const Tree& tree, BasicImage<T>& image, const DrawSettings& settings = {});
 
 /// Reads and parses a file into the resolved tree (throws vraster::Error when it cannot be read).
 Tree load_svg_tree(const std::string& path);
