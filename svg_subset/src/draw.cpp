@@ -95,6 +95,20 @@ struct Coverage {
   int x = 0, y = 0;
 };
 
+bool uses_box(const ClipPath* clip) {
+  for (; clip; clip = clip->clip.get()) {
+    if (clip->units == Units::ObjectBoundingBox) return true;
+  }
+  return false;
+}
+
+bool uses_box(const Mask* mask) {
+  for (; mask; mask = mask->mask.get()) {
+    if (mask->units == Units::ObjectBoundingBox || mask->content_units == Units::ObjectBoundingBox) return true;
+  }
+  return false;
+}
+
 /// Multiplies `a` by `b` where they overlap; zero elsewhere.
 void multiply(Coverage& a, const Coverage& b) {
   Image& img = *a.image;
@@ -151,7 +165,9 @@ class Drawer {
   /// coverage image), then a layer with opacity and blend mode unless only a plain clip was needed.
   void effects(const Group& g) {
     const Affine ctm = canvas_.get_transform();
-    const std::optional<Rect> bbox = bounds_of(g, Affine{});
+    // The box costs a pass over every path below: only when objectBoundingBox units need it.
+    const bool box_needed = uses_box(g.clip.get()) || (!clip_mode_ && uses_box(g.mask.get()));
+    const std::optional<Rect> bbox = box_needed ? bounds_of(g, Affine{}) : std::nullopt;
     std::optional<Coverage> mask;
     if (g.clip) {
       Path clip_path;
@@ -292,16 +308,18 @@ class Drawer {
 
   // ---- paints ----
 
-  std::optional<vraster::Paint> paint(const svg::Paint& p, const Rect& bbox) {
+  /// The canvas paint for a fill or stroke of `shape` (whose box objectBoundingBox units refer to).
+  std::optional<vraster::Paint> paint(const svg::Paint& p, const PathNode& shape) {
+    auto bbox = [&] { return shape.paint_box ? *shape.paint_box : shape.path.bounds(); };
     switch (p.kind) {
       case svg::Paint::Kind::None:
         return std::nullopt;
       case svg::Paint::Kind::Color:
         return solid(p.color, p.opacity);
       case svg::Paint::Kind::Gradient:
-        return p.gradient ? gradient(*p.gradient, bbox, p.opacity) : std::nullopt;
+        return p.gradient ? gradient(*p.gradient, bbox(), p.opacity) : std::nullopt;
       case svg::Paint::Kind::Pattern:
-        return p.pattern ? pattern(*p.pattern, bbox, p.opacity) : std::nullopt;
+        return p.pattern ? pattern(*p.pattern, bbox(), p.opacity) : std::nullopt;
     }
     return std::nullopt;
   }
@@ -386,11 +404,13 @@ class Drawer {
     out.set_extend(Extend::Repeat);
     const Affine to_user = pat.transform * Affine::translate(tile.x0, tile.y0) * Affine::scale(tw / iw, th / ih);
     out.set_transform(to_user);
-    // A tile drawn at exactly device resolution and not rotated is copied pixel for pixel: filtering would only
-    // blur its edges (a tile starting at half a pixel would smear every seam).
-    const Affine to_device = canvas_.get_transform() * to_user;
-    const bool pixel_exact = std::abs(to_device.a - 1) < 1e-9 && std::abs(to_device.d - 1) < 1e-9 &&
-                             to_device.b == 0 && to_device.c == 0;
+    // A tile drawn at exactly device resolution, with no rotation or skew on the way, is copied pixel for pixel:
+    // filtering would only blur its edges (a tile starting at half a pixel would smear every seam). Rotations
+    // that happen to cancel still resample, as in resvg.
+    const Affine ctm = canvas_.get_transform();
+    const Affine to_device = ctm * to_user;
+    const bool axis_aligned = ctm.b == 0 && ctm.c == 0 && pat.transform.b == 0 && pat.transform.c == 0;
+    const bool pixel_exact = axis_aligned && std::abs(to_device.a - 1) < 1e-9 && std::abs(to_device.d - 1) < 1e-9;
     out.set_filter(pixel_exact ? ImageFilter::Nearest : ImageFilter::Bilinear);
     out.set_opacity(opacity);
     return out;
@@ -415,12 +435,11 @@ class Drawer {
       canvas_.fill(p.path, p.fill->rule);
       return;
     }
-    const Rect bbox = p.paint_box ? *p.paint_box : p.path.bounds();
     const char* what = "fill";
     auto fill = [&] {
       what = "fill";
       if (!p.fill) return;
-      const std::optional<vraster::Paint> paint = this->paint(p.fill->paint, bbox);
+      const std::optional<vraster::Paint> paint = this->paint(p.fill->paint, p);
       if (!paint) return;
       canvas_.set_fill_paint(*paint);
       canvas_.fill(p.path, settings_.rule_override.value_or(p.fill->rule));
@@ -428,7 +447,7 @@ class Drawer {
     auto stroke = [&] {
       what = "stroke";
       if (!p.stroke) return;
-      const std::optional<vraster::Paint> paint = this->paint(p.stroke->paint, bbox);
+      const std::optional<vraster::Paint> paint = this->paint(p.stroke->paint, p);
       if (!paint) return;
       canvas_.set_stroke_paint(*paint);
       set_stroke_style(p.stroke->style);
