@@ -180,6 +180,9 @@ class Canvas {
   /// clip; every call the plan culls is skipped and every change it made is applied. Without a plan, every call
   /// is replayed as recorded. The canvas state is left as it was.
   void draw_scene(const Scene& scene, const ScenePlan* plan = nullptr);
+  /// How many fills so far went over the exact-coverage work limit and were drawn analytic instead
+  /// (Rasterizer::exact_fallbacks), so that callers can warn.
+  std::uint64_t exact_fallbacks() const;
 
   // ---- hit testing (user coordinates mapped by the current transform) ----
   bool is_point_in_path(double x, double y) const;

@@ -485,6 +485,7 @@ std::int64_t Canvas::flood_fill(int x, int y, Color fill, const SeedFillOptions&
   return s.image8 ? vraster::flood_fill(*s.image8, x, y, fill, options)
                   : vraster::flood_fill(*s.image16, x, y, fill, options);
 }
+std::uint64_t Canvas::exact_fallbacks() const { return impl_->renderer.rasterizer().exact_fallbacks(); }
 
 void Canvas::apply_fxaa() {
   if (impl_->recording) {

@@ -30,6 +30,7 @@ int run_depth(int argc, char** argv);
 /// Prints a warning when some exact (or non-exterior) fills of `renderer` went over the crossing budget and
 /// were drawn analytic (or non-zero) instead (see Rasterizer::kMaxExactCrossings).
 void warn_about_exact_fallbacks(Renderer& renderer);
+void warn_about_exact_fallbacks(std::uint64_t fallbacks);
 
 /// The embedded demo scene (SVG text).
 std::string_view demo_svg();

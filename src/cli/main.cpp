@@ -15,7 +15,9 @@
 
 #include "cli/cli.hpp"
 #include "cli/image_compare.hpp"
+#include "svg_subset/draw.hpp"
 #include "svg_subset/svg.hpp"
+#include "svg_subset/tree.hpp"
 #include "vraster/canvas.hpp"
 #include "vraster/fxaa.hpp"
 #include "vraster/files.hpp"
@@ -154,13 +156,13 @@ RenderArgs parse_render_args(int argc, char** argv) {
   return a;
 }
 
-template <class T>
-void render_document(const svg::Document& doc, const RenderArgs& a) {
-  BasicImage<T> image(doc.width, doc.height);
-  Renderer renderer;
+/// Renders frames (one, or --bench N timed after a warm-up) with `draw`, then writes the PNG.
+template <class T, class Draw>
+void render_frames(int width, int height, const RenderArgs& a, Draw&& draw) {
+  BasicImage<T> image(width, height);
   auto frame = [&] {
     image.clear(a.background);
-    svg::render(doc, image, a.settings, renderer);
+    draw(image);
     post_filter(a.aa, image);  // fxaa: the aliased render, then the filter
   };
   if (a.bench_frames > 0) {
@@ -180,8 +182,31 @@ void render_document(const svg::Document& doc, const RenderArgs& a) {
   } else {
     frame();
   }
-  warn_about_exact_fallbacks(renderer);
   if (!a.output.empty()) write_png(a.output, image);
+}
+
+/// --hairline: the flat draw items and the core Renderer (every stroke becomes a hairline; solid colours only).
+template <class T>
+void render_document(const svg::Document& doc, const RenderArgs& a) {
+  Renderer renderer;
+  render_frames<T>(doc.width, doc.height, a,
+                   [&](BasicImage<T>& image) { svg::render(doc, image, a.settings, renderer); });
+  warn_about_exact_fallbacks(renderer);
+}
+
+/// Everything else: the resolved tree drawn on a canvas (paint servers, clips, masks, layers, blend modes).
+template <class T>
+void render_tree(const svg::Tree& tree, const RenderArgs& a) {
+  const auto [w, h] = svg::tree_output_size(tree, a.width, a.height);
+  svg::DrawSettings settings;
+  settings.aa = a.settings.aa;
+  settings.tolerance = a.settings.tolerance;
+  settings.rule_override = a.settings.rule_override;
+  std::uint64_t fallbacks = 0;
+  render_frames<T>(w, h, a, [&](BasicImage<T>& image) {
+    fallbacks += svg::render_tree(tree, image, settings).exact_fallbacks;
+  });
+  warn_about_exact_fallbacks(fallbacks);
 }
 
 int run_render(int argc, char** argv) {
@@ -190,18 +215,30 @@ int run_render(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
-  svg::Document doc = svg::load_svg(a.input);
-  if (!a.quiet) {
-    for (const std::string& w : doc.warnings) std::cerr << printable(a.input, 1024) << ":" << w << "\n";
+  if (a.settings.hairline) {
+    svg::Document doc = svg::load_svg(a.input);
+    if (!a.quiet) {
+      for (const std::string& w : doc.warnings) std::cerr << printable(a.input, 1024) << ":" << w << "\n";
+    }
+    if (a.width > 0 || a.height > 0) {
+      const auto [w, h] = svg::output_size(doc, a.width, a.height);
+      svg::scale_to(doc, w, h);
+    }
+    if (a.depth == 16) {
+      render_document<std::uint16_t>(doc, a);
+    } else {
+      render_document<std::uint8_t>(doc, a);
+    }
+    return 0;
   }
-  if (a.width > 0 || a.height > 0) {
-    const auto [w, h] = svg::output_size(doc, a.width, a.height);
-    svg::scale_to(doc, w, h);
+  const svg::Tree tree = svg::load_svg_tree(a.input);
+  if (!a.quiet) {
+    for (const std::string& w : tree.warnings) std::cerr << printable(a.input, 1024) << ":" << w << "\n";
   }
   if (a.depth == 16) {
-    render_document<std::uint16_t>(doc, a);
+    render_tree<std::uint16_t>(tree, a);
   } else {
-    render_document<std::uint8_t>(doc, a);
+    render_tree<std::uint8_t>(tree, a);
   }
   return 0;
 }
@@ -217,14 +254,14 @@ int run_demo(int argc, char** argv) {
       throw UsageError{"demo: unknown argument " + quoted(arg)};
     }
   }
-  const svg::Document doc = svg::parse_svg(demo_svg(), "<demo>");
-  Image image(doc.width, doc.height + kDemoPanelHeight);
+  const svg::Tree tree = svg::parse_svg_tree(demo_svg(), "<demo>");
+  const auto [width, height] = svg::tree_output_size(tree);
+  Image image(width, height + kDemoPanelHeight);
   image.clear(Color{1, 1, 1, 1});
-  Renderer renderer;
-  svg::render(doc, image, svg::RenderSettings{}, renderer);
   {
     Canvas canvas(image);
-    draw_canvas_panel(canvas, doc.height, doc.width, kDemoPanelHeight);
+    svg::draw_tree(tree, canvas);
+    draw_canvas_panel(canvas, height, width, kDemoPanelHeight);
   }
   write_png(output, image);
   std::cout << "vraster demo: wrote " << output << " (" << image.width << "x" << image.height << ")\n";

@@ -1053,6 +1053,7 @@ class Builder {
       warn("unsupported elements", at, "element <" + printable(name) + "> is not supported yet, ignored");
       return;
     }
+    if (in_clip_ && !shape && name != "use") return;  // a clipPath's children: shapes and uses of shapes only
     const Style style = computed(node, parent);
     if (!style.displayed) return;  // display: none hides the whole subtree
 
@@ -1114,11 +1115,13 @@ class Builder {
     PathNode p;
     p.id = node.attribute("id").value();
     std::tie(p.line, p.column) = lines_.position(at);
-    if (style.visible && name != "line") {
+    if (in_clip_) {  // clip geometry: fill and stroke have no effect, clip-rule is the rule
+      if (style.visible) p.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1}, style.clip_rule};
+    } else if (style.visible && name != "line") {
       const Paint paint = resolve_paint(style.fill, style.fill_opacity, style);
       if (paint.kind != Paint::Kind::None) p.fill = Fill{paint, style.fill_rule};
     }
-    if (style.visible && style.stroke_style.width > 0) {
+    if (!in_clip_ && style.visible && style.stroke_style.width > 0) {
       const Paint paint = resolve_paint(style.stroke, style.stroke_opacity, style);
       if (paint.kind != Paint::Kind::None) {
         p.stroke = Stroke{paint, style.stroke_style};
@@ -1206,6 +1209,7 @@ class Builder {
     const double x = length_attribute(node, "x", Axis::X).value_or(0);
     const double y = length_attribute(node, "y", Axis::Y).value_or(0);
     group.transform = group.transform * Affine::translate(x, y);
+    if (in_clip_ && (local_name(target) == "symbol" || local_name(target) == "svg")) return false;
     use_stack_.push_back(target);
     if (local_name(target) == "symbol") {
       count_element(element_offset(target), depth + 1);
@@ -1419,7 +1423,9 @@ class Builder {
     for (const pugi::xml_node n : chain) {
       if (!n.first_child()) continue;
       const Style s = computed(n, Style{});
+      const bool was_in_clip = std::exchange(in_clip_, false);
       children(n, s, content->children, 1);
+      in_clip_ = was_in_clip;
       break;
     }
     resolving_.pop_back();
@@ -1457,7 +1463,9 @@ class Builder {
     clip->transform = own_transform(node);
     const Style s = computed(node, Style{});
     auto content = std::make_shared<Group>();
+    const bool was_in_clip = std::exchange(in_clip_, true);
     children(node, s, content->children, 1);
+    in_clip_ = was_in_clip;
     clip->content = std::move(content);
     if (!s.clip_path.empty()) clip->clip = clip_path(s.clip_path);
     resolving_.pop_back();
@@ -1497,7 +1505,9 @@ class Builder {
     m->luminance = trim(node.attribute("mask-type").value()) != "alpha";
     const Style s = computed(node, Style{});
     auto content = std::make_shared<Group>();
+    const bool was_in_clip = std::exchange(in_clip_, false);
     children(node, s, content->children, 1);
+    in_clip_ = was_in_clip;
     m->content = std::move(content);
     if (!s.mask.empty()) m->mask = mask(s.mask);
     resolving_.pop_back();
@@ -1528,6 +1538,7 @@ class Builder {
   std::unordered_map<const void*, std::shared_ptr<const Mask>> masks_;
   std::unordered_set<const void*> invalid_;  // clip paths and masks found in a reference loop
   bool warned_filter_ = false, warned_marker_ = false, warned_image_ = false;
+  bool in_clip_ = false;  // building a clipPath's content: geometry only
   struct WarningCount {
     std::string_view kind;  // always a string literal
     std::size_t count;

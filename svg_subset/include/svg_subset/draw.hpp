@@ -1,0 +1,47 @@
+// svg_subset: draws the resolved tree (tree.hpp) on a vraster::Canvas, with everything the tree describes:
+// paint servers (gradients, patterns), clip paths, masks, group opacity as a layer, mix-blend-mode, isolation.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "svg_subset/tree.hpp"
+#include "vraster/canvas.hpp"
+#include "vraster/flatten.hpp"
+#include "vraster/image.hpp"
+#include "vraster/raster.hpp"
+
+namespace vraster::svg {
+
+/// Settings shared by every element.
+struct DrawSettings {
+  AntiAlias aa = AntiAlias::Analytic;  ///< shape-rendering crispEdges still draws aliased
+  double tolerance = kDefaultTolerance;
+  std::optional<FillRule> rule_override;  ///< replaces the file's fill-rule (not clip-rule)
+};
+
+/// What a drawing reports back.
+struct DrawStats {
+  /// Fills that went over the exact-coverage work limit and were drawn analytic (callers warn about them).
+  std::uint64_t exact_fallbacks = 0;
+};
+
+/// Draws `tree` with the canvas's current transform as the viewport's (the tree's root maps its user space to
+/// CSS px: scale the canvas first to draw at another size). The canvas state is the same afterwards. A core
+/// limit reached while drawing one element (vraster::Error) is rethrown as a ParseError at that element.
+DrawStats draw_tree(const Tree& tree, Canvas& canvas, const DrawSettings& settings = {});
+
+/// The pixel size of the tree drawn at its intrinsic size (rounded up), or at a requested width and/or height
+/// (0 = not given) as output_size() computes it for a Document.
+std::pair<int, int> tree_output_size(const Tree& tree, int width = 0, int height = 0);
+
+/// Draws `tree` over `image` (not cleared first), scaled from the intrinsic size to the image size on each axis.
+template <class T>
+DrawStats render_tree(const Tree& tree, BasicImage<T>& image, const DrawSettings& settings = {});
+
+/// Reads and parses a file into the resolved tree (throws vraster::Error when it cannot be read).
+Tree load_svg_tree(const std::string& path);
+
+}  // namespace vraster::svg

@@ -1,0 +1,534 @@
+// svg_subset: drawing the resolved tree on a vraster::Canvas (design notes: docs/design.md, "Drawing the SVG tree").
+//
+// Groups map to save/transform/restore, and to a canvas layer only when an effect needs one (opacity, a blend
+// mode, isolation, a mask, a clip the canvas cannot express as one clip() call). Clip paths and masks become
+// coverage images in device pixels, used as the layer's alpha mask: a clipPath's children form a union, which
+// the canvas's intersecting clip() cannot express, so the children are drawn white into an offscreen image.
+#include "svg_subset/draw.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "svg_subset/svg.hpp"
+#include "vraster/composite.hpp"
+#include "vraster/files.hpp"
+
+namespace vraster::svg {
+
+namespace {
+
+// Offscreen images in flight at once (patterns in patterns, masks on masks): deeper content draws nothing.
+constexpr int kMaxNesting = 12;
+// Largest pattern tile, in pixels: 2^24, and 4 times the canvas (past that a tile is drawn below device
+// resolution: so large a tile shows one corner at most).
+constexpr double kMaxTilePixels = double(1 << 24);
+constexpr double kMinTileCap = double(1 << 16);
+
+bool usable_box(const Rect& r) {
+  return r.width() > 0 && r.height() > 0 && std::isfinite(r.width()) && std::isfinite(r.height());
+}
+
+/// Maps the unit square onto `box` (objectBoundingBox units).
+Affine box_transform(const Rect& box) { return {box.width(), 0, 0, box.height(), box.x0, box.y0}; }
+
+Rect map_rect(const Rect& r, const Rect& box) {
+  return {box.x0 + r.x0 * box.width(), box.y0 + r.y0 * box.height(), box.x0 + r.x1 * box.width(),
+          box.y0 + r.y1 * box.height()};
+}
+
+void include(std::optional<Rect>& acc, const Rect& r) {
+  if (!acc) {
+    acc = r;
+    return;
+  }
+  acc->include({r.x0, r.y0});
+  acc->include({r.x1, r.y1});
+}
+
+Rect transformed_rect(const Rect& r, const Affine& m) {
+  Rect out = Rect::from_point(m.apply({r.x0, r.y0}));
+  out.include(m.apply({r.x1, r.y0}));
+  out.include(m.apply({r.x0, r.y1}));
+  out.include(m.apply({r.x1, r.y1}));
+  return out;
+}
+
+/// The object bounding box of a group's children (fill geometry, as SVG defines it) mapped by `m`.
+std::optional<Rect> bounds_of(const Group& g, const Affine& m) {
+  std::optional<Rect> box;
+  for (const Node& child : g.children) {
+    if (const PathNode* p = std::get_if<PathNode>(&child.value)) {
+      if (!p->path.empty()) include(box, p->path.transformed(m).bounds());
+    } else if (const Group* sub = std::get_if<Group>(&child.value)) {
+      if (const auto r = bounds_of(*sub, m * sub->transform)) include(box, *r);
+    } else if (const ImageNode* image = std::get_if<ImageNode>(&child.value)) {
+      include(box, transformed_rect(image->view, m));
+    }
+  }
+  return box;
+}
+
+/// A device-pixel rectangle.
+struct Area {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+  bool empty() const { return x1 <= x0 || y1 <= y0; }
+};
+
+/// Device pixels that `r` (user space, mapped by `m`) can touch, inside a w x h canvas.
+Area device_area(const Rect& r, const Affine& m, int w, int h) {
+  const Rect d = transformed_rect(r, m);
+  if (!(d.x0 <= d.x1) || !(d.y0 <= d.y1)) return {};  // NaN
+  auto clamp = [](double v, int hi) { return static_cast<int>(std::clamp(v, 0.0, double(hi))); };
+  return {clamp(std::floor(d.x0), w), clamp(std::floor(d.y0), h), clamp(std::ceil(d.x1), w),
+          clamp(std::ceil(d.y1), h)};
+}
+
+/// A coverage image in device pixels (every channel holds the coverage, so it works as an alpha mask), its
+/// top-left pixel at (x, y). Pixels outside it have coverage 0.
+struct Coverage {
+  std::shared_ptr<Image> image;
+  int x = 0, y = 0;
+};
+
+bool uses_box(const ClipPath* clip) {
+  for (; clip; clip = clip->clip.get()) {
+    if (clip->units == Units::ObjectBoundingBox) return true;
+  }
+  return false;
+}
+
+bool uses_box(const Mask* mask) {
+  for (; mask; mask = mask->mask.get()) {
+    if (mask->units == Units::ObjectBoundingBox || mask->content_units == Units::ObjectBoundingBox) return true;
+  }
+  return false;
+}
+
+/// Multiplies `a` by `b` where they overlap; zero elsewhere.
+void multiply(Coverage& a, const Coverage& b) {
+  Image& img = *a.image;
+  for (int y = 0; y < img.height; ++y) {
+    for (int x = 0; x < img.width; ++x) {
+      const int bx = x + a.x - b.x, by = y + a.y - b.y;
+      const int v = bx >= 0 && by >= 0 && bx < b.image->width && by < b.image->height ? b.image->pixel(bx, by)[3] : 0;
+      std::uint8_t* px = img.pixel(x, y);
+      const auto m = static_cast<std::uint8_t>((px[3] * v + 127) / 255);
+      px[0] = px[1] = px[2] = px[3] = m;
+    }
+  }
+}
+
+/// The last stop's colour: what SVG paints for a gradient whose vector or radius is zero.
+Color last_stop(const Gradient& g) { return g.stops.empty() ? Color::transparent() : g.stops.back().color; }
+
+class Drawer {
+ public:
+  /// `clip_mode`: drawing a clipPath's content (paths filled opaque with their clip-rule; paint, stroke,
+  /// opacity, masks and images have no effect; clip-path on children does).
+  Drawer(Canvas& canvas, const DrawSettings& settings, const std::string& file, DrawStats& stats, int nesting,
+         bool clip_mode)
+      : canvas_(canvas), settings_(settings), file_(file), stats_(stats), nesting_(nesting), clip_mode_(clip_mode) {}
+
+  void group(const Group& g) {
+    if (!clip_mode_ && !(g.opacity > 0)) return;
+    if (g.clip && !g.clip->content) return;  // a clipPath in a reference loop clips everything away
+    if (!clip_mode_ && g.mask && !g.mask->content) return;
+    canvas_.save();
+    canvas_.transform(g.transform);
+    if (clip_mode_ ? g.clip != nullptr : g.needs_layer()) {
+      effects(g);
+    } else {
+      children(g);
+    }
+    canvas_.restore();
+  }
+
+ private:
+  void children(const Group& g) {
+    for (const Node& child : g.children) {
+      if (const Group* sub = std::get_if<Group>(&child.value)) {
+        group(*sub);
+      } else if (const PathNode* p = std::get_if<PathNode>(&child.value)) {
+        path(*p);
+      } else if (const ImageNode* image = std::get_if<ImageNode>(&child.value)) {
+        this->image(*image);
+      }
+    }
+  }
+
+  /// A group with effects: the clip (a canvas clip when it is one path, else a coverage image), the mask (a
+  /// coverage image), then a layer with opacity and blend mode unless only a plain clip was needed.
+  void effects(const Group& g) {
+    const Affine ctm = canvas_.get_transform();
+    // The box costs a pass over every path below: only when objectBoundingBox units need it.
+    const bool box_needed = uses_box(g.clip.get()) || (!clip_mode_ && uses_box(g.mask.get()));
+    const std::optional<Rect> bbox = box_needed ? bounds_of(g, Affine{}) : std::nullopt;
+    std::optional<Coverage> mask;
+    if (g.clip) {
+      Path clip_path;
+      FillRule rule = FillRule::NonZero;
+      if (single_clip_path(*g.clip, bbox, clip_path, rule)) {
+        canvas_.clip(clip_path, rule);
+      } else {
+        mask = clip_coverage(*g.clip, bbox, ctm);
+        if (!mask) return;  // clipped away
+      }
+    }
+    if (g.mask && !clip_mode_) {
+      std::optional<Coverage> m = mask_coverage(*g.mask, bbox, ctm);
+      if (!m) return;  // masked away
+      if (mask) multiply(*m, *mask);
+      mask = std::move(m);
+    }
+    LayerOptions options;
+    if (!clip_mode_) {
+      options.opacity = g.opacity;
+      if (g.blend_mode != "normal" && !parse_composite_op(g.blend_mode, options.op)) options.op = CompositeOp::SourceOver;
+    }
+    if (!mask && options.opacity >= 1 && options.op == CompositeOp::SourceOver && (clip_mode_ || !g.isolate)) {
+      children(g);  // only a clip: no layer needed
+      return;
+    }
+    if (mask) {
+      options.mask = mask->image;
+      options.mask_x = mask->x;
+      options.mask_y = mask->y;
+      options.mask_mode = MaskMode::Alpha;
+    }
+    canvas_.begin_layer(options);
+    children(g);
+    canvas_.end_layer();
+  }
+
+  /// The clip-path's transform from clip content space to the clipped element's user space, or nothing when
+  /// objectBoundingBox units meet an element without a usable box (then nothing is drawn).
+  static std::optional<Affine> clip_space(const ClipPath& clip, const std::optional<Rect>& bbox) {
+    if (clip.units == Units::UserSpaceOnUse) return clip.transform;
+    if (!bbox || !usable_box(*bbox)) return std::nullopt;
+    return clip.transform * box_transform(*bbox);
+  }
+
+  /// When the clip is one path with nothing else (no clip on the clipPath or inside it): that path in the
+  /// element's user space, for canvas clip() (the fast path: no offscreen image, no layer).
+  static bool single_clip_path(const ClipPath& clip, const std::optional<Rect>& bbox, Path& out, FillRule& rule) {
+    if (clip.clip || !clip.content) return false;
+    std::optional<Affine> m = clip_space(clip, bbox);
+    if (!m) return false;
+    const Group* g = clip.content.get();
+    while (g->children.size() == 1) {
+      const Node& child = g->children[0];
+      if (const PathNode* p = std::get_if<PathNode>(&child.value)) {
+        if (!p->fill || p->crisp_edges) return false;
+        out = p->path.transformed(*m);
+        rule = p->fill->rule;
+        return true;
+      }
+      const Group* sub = std::get_if<Group>(&child.value);
+      if (!sub || sub->clip) return false;
+      *m = *m * sub->transform;
+      g = sub;
+    }
+    return false;
+  }
+
+  /// A transparent image covering `area` and a canvas on it whose transform is `ctm` moved to the image.
+  struct Offscreen {
+    std::shared_ptr<Image> image;
+    std::unique_ptr<Canvas> canvas;
+  };
+  Offscreen offscreen(const Area& area, const Affine& ctm) const {
+    Offscreen o;
+    o.image = std::make_shared<Image>(area.width(), area.height());
+    o.canvas = std::make_unique<Canvas>(*o.image);
+    o.canvas->set_transform(Affine::translate(-area.x0, -area.y0) * ctm);
+    o.canvas->set_anti_alias(settings_.aa);
+    o.canvas->set_tolerance(settings_.tolerance);
+    return o;
+  }
+
+  /// The clip as coverage: every child path filled into an offscreen image (their union), times the clip on the
+  /// clipPath itself. Nothing: everything is clipped away.
+  std::optional<Coverage> clip_coverage(const ClipPath& clip, const std::optional<Rect>& bbox, const Affine& ctm) {
+    if (!clip.content || nesting_ >= kMaxNesting) return std::nullopt;
+    const std::optional<Affine> m = clip_space(clip, bbox);
+    if (!m) return std::nullopt;
+    const std::optional<Rect> content = bounds_of(*clip.content, *m);
+    if (!content) return std::nullopt;
+    const Area area = device_area(*content, ctm, canvas_.width(), canvas_.height());
+    if (area.empty()) return std::nullopt;
+    Offscreen o = offscreen(area, ctm * *m);
+    Drawer(*o.canvas, settings_, file_, stats_, nesting_ + 1, true).group(*clip.content);
+    stats_.exact_fallbacks += o.canvas->exact_fallbacks();
+    Coverage out{o.image, area.x0, area.y0};
+    if (clip.clip) {
+      const std::optional<Coverage> inner = clip_coverage(*clip.clip, bbox, ctm);
+      if (!inner) return std::nullopt;
+      multiply(out, *inner);
+    }
+    return out;
+  }
+
+  /// The mask as coverage: its content drawn inside the mask rectangle, turned into luminance or alpha, times
+  /// the mask on the mask element. Nothing: everything is masked away.
+  std::optional<Coverage> mask_coverage(const Mask& mask, const std::optional<Rect>& bbox, const Affine& ctm) {
+    if (!mask.content || nesting_ >= kMaxNesting) return std::nullopt;
+    const bool box_units = mask.units == Units::ObjectBoundingBox || mask.content_units == Units::ObjectBoundingBox;
+    if (box_units && (!bbox || !usable_box(*bbox))) return std::nullopt;
+    const Rect rect = mask.units == Units::ObjectBoundingBox ? map_rect(mask.rect, *bbox) : mask.rect;
+    if (!usable_box(rect)) return std::nullopt;
+    const Area area = device_area(rect, ctm, canvas_.width(), canvas_.height());
+    if (area.empty()) return std::nullopt;
+    Offscreen o = offscreen(area, ctm);
+    Path r;
+    r.add_rect(rect);
+    o.canvas->clip(r, FillRule::NonZero);
+    if (mask.content_units == Units::ObjectBoundingBox) o.canvas->transform(box_transform(*bbox));
+    Drawer(*o.canvas, settings_, file_, stats_, nesting_ + 1, false).group(*mask.content);
+    stats_.exact_fallbacks += o.canvas->exact_fallbacks();
+    // Luminance of the premultiplied colour = luminance of the colour times its alpha (sRGB coefficients).
+    Image& img = *o.image;
+    for (std::size_t i = 0; i < img.data.size(); i += 4) {
+      std::uint8_t* px = img.data.data() + i;
+      const double v = mask.luminance ? 0.2125 * px[0] + 0.7154 * px[1] + 0.0721 * px[2] : px[3];
+      px[0] = px[1] = px[2] = px[3] = static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L));
+    }
+    Coverage out{o.image, area.x0, area.y0};
+    if (mask.mask) {
+      const std::optional<Coverage> inner = mask_coverage(*mask.mask, bbox, ctm);
+      if (!inner) return std::nullopt;
+      multiply(out, *inner);
+    }
+    return out;
+  }
+
+  // ---- paints ----
+
+  /// The canvas paint for a fill or stroke of `shape` (whose box objectBoundingBox units refer to).
+  std::optional<vraster::Paint> paint(const svg::Paint& p, const PathNode& shape) {
+    auto bbox = [&] { return shape.paint_box ? *shape.paint_box : shape.path.bounds(); };
+    switch (p.kind) {
+      case svg::Paint::Kind::None:
+        return std::nullopt;
+      case svg::Paint::Kind::Color:
+        return solid(p.color, p.opacity);
+      case svg::Paint::Kind::Gradient:
+        return p.gradient ? gradient(*p.gradient, bbox(), p.opacity) : std::nullopt;
+      case svg::Paint::Kind::Pattern:
+        return p.pattern ? pattern(*p.pattern, bbox(), p.opacity) : std::nullopt;
+    }
+    return std::nullopt;
+  }
+
+  static std::optional<vraster::Paint> solid(Color c, float opacity) {
+    c.a *= opacity;
+    if (!(c.a > 0)) return std::nullopt;
+    return vraster::Paint::solid(c);
+  }
+
+  static std::optional<vraster::Paint> gradient(const Gradient& g, const Rect& bbox, float opacity) {
+    Affine to_user = g.transform;
+    if (g.units == Units::ObjectBoundingBox) {
+      if (!usable_box(bbox)) return std::nullopt;  // SVG: a box without area paints nothing
+      to_user = box_transform(bbox) * g.transform;
+    }
+    vraster::Paint out;
+    if (g.kind == Gradient::Kind::Linear) {
+      if (g.x1 == g.x2 && g.y1 == g.y2) return solid(last_stop(g), opacity);
+      out = vraster::Paint::linear({g.x1, g.y1}, {g.x2, g.y2});
+    } else {
+      if (!(g.r > 0)) return solid(last_stop(g), opacity);
+      // SVG 2: the focal circle (fx, fy, fr) is where offset 0 starts, the end circle (cx, cy, r) offset 1.
+      out = vraster::Paint::radial({g.fx, g.fy}, std::max(0.0, g.fr), {g.cx, g.cy}, g.r);
+    }
+    // Stops with equal offsets make a step. The canvas pads below offset 0 with the colour at 0, which is the last
+    // of a leading run of equal offsets; resvg pads with the first: the run's later stops move up by a hair.
+    const std::size_t n = g.stops.size();
+    std::size_t run = 1;
+    while (run < n && g.stops[run].offset == g.stops[0].offset) ++run;
+    const double lifted = std::min(g.stops[0].offset + 1e-6, run < n ? g.stops[run].offset : 1.0);
+    for (std::size_t i = 0; i < n; ++i) out.add_stop(i > 0 && i < run ? lifted : g.stops[i].offset, g.stops[i].color);
+    out.set_extend(g.spread == Spread::Reflect ? Extend::Reflect
+                   : g.spread == Spread::Repeat ? Extend::Repeat
+                                                : Extend::Pad);
+    out.set_transform(to_user);
+    out.set_opacity(opacity);
+    return out;
+  }
+
+  /// A pattern: one tile drawn into an image at about device resolution, repeated by a pattern paint.
+  std::optional<vraster::Paint> pattern(const Pattern& pat, const Rect& bbox, float opacity) {
+    if (!pat.content || nesting_ >= kMaxNesting) return std::nullopt;
+    const bool box_units = pat.units == Units::ObjectBoundingBox ||
+                           (pat.content_units == Units::ObjectBoundingBox && !pat.view_box);
+    if (box_units && !usable_box(bbox)) return std::nullopt;
+    const Rect tile = pat.units == Units::ObjectBoundingBox ? map_rect(pat.rect, bbox) : pat.rect;
+    if (!usable_box(tile)) return std::nullopt;
+    const double tw = tile.width(), th = tile.height();
+    // Device scale along each tile axis.
+    const Affine m = canvas_.get_transform() * pat.transform;
+    double iw = std::ceil(tw * std::hypot(m.a, m.b)), ih = std::ceil(th * std::hypot(m.c, m.d));
+    if (!std::isfinite(iw) || !std::isfinite(ih)) return std::nullopt;
+    iw = std::clamp(iw, 1.0, double(kMaxImageSide));
+    ih = std::clamp(ih, 1.0, double(kMaxImageSide));
+    const double cap = std::min(kMaxTilePixels, std::max(kMinTileCap, 4.0 * canvas_.width() * canvas_.height()));
+    if (iw * ih > cap) {
+      const double k = std::sqrt(cap / (iw * ih));
+      iw = std::max(1.0, std::floor(iw * k));
+      ih = std::max(1.0, std::floor(ih * k));
+    }
+    auto image = std::make_shared<Image>(static_cast<int>(iw), static_cast<int>(ih));
+    {
+      Canvas c(*image);
+      c.set_anti_alias(settings_.aa);
+      c.set_tolerance(settings_.tolerance);
+      c.scale(iw / tw, ih / th);
+      if (pat.view_box) {
+        // The viewBox fills the tile (preserveAspectRatio's default, xMidYMid meet).
+        const Rect& vb = *pat.view_box;
+        if (!usable_box(vb)) return std::nullopt;
+        const double s = std::min(tw / vb.width(), th / vb.height());
+        c.translate((tw - vb.width() * s) / 2 - vb.x0 * s, (th - vb.height() * s) / 2 - vb.y0 * s);
+        c.scale(s, s);
+      } else if (pat.content_units == Units::ObjectBoundingBox) {
+        c.scale(bbox.width(), bbox.height());
+      }
+      Drawer(c, settings_, file_, stats_, nesting_ + 1, false).group(*pat.content);
+      stats_.exact_fallbacks += c.exact_fallbacks();
+    }
+    vraster::Paint out = vraster::Paint::pattern(std::shared_ptr<const Image>(image));
+    out.set_extend(Extend::Repeat);
+    const Affine to_user = pat.transform * Affine::translate(tile.x0, tile.y0) * Affine::scale(tw / iw, th / ih);
+    out.set_transform(to_user);
+    // A tile drawn at exactly device resolution, with no rotation or skew on the way, is copied pixel for pixel:
+    // filtering would only blur its edges (a tile starting at half a pixel would smear every seam). Rotations
+    // that happen to cancel still resample, as in resvg.
+    const Affine ctm = canvas_.get_transform();
+    const Affine to_device = ctm * to_user;
+    const bool axis_aligned = ctm.b == 0 && ctm.c == 0 && pat.transform.b == 0 && pat.transform.c == 0;
+    const bool pixel_exact = axis_aligned && std::abs(to_device.a - 1) < 1e-9 && std::abs(to_device.d - 1) < 1e-9;
+    out.set_filter(pixel_exact ? ImageFilter::Nearest : ImageFilter::Bilinear);
+    out.set_opacity(opacity);
+    return out;
+  }
+
+  // ---- leaves ----
+
+  void set_stroke_style(const StrokeStyle& s) {
+    canvas_.set_line_width(s.width);
+    canvas_.set_line_cap(s.cap);
+    canvas_.set_line_join(s.join);
+    canvas_.set_miter_limit(s.miter_limit);
+    canvas_.set_line_dash(s.dashes);
+    canvas_.set_line_dash_offset(s.dash_offset);
+  }
+
+  void path(const PathNode& p) {
+    canvas_.set_anti_alias(p.crisp_edges ? AntiAlias::None : settings_.aa);
+    if (clip_mode_) {
+      if (!p.fill) return;
+      canvas_.set_fill_color(Color{1, 1, 1, 1});
+      canvas_.fill(p.path, p.fill->rule);
+      return;
+    }
+    const char* what = "fill";
+    auto fill = [&] {
+      what = "fill";
+      if (!p.fill) return;
+      const std::optional<vraster::Paint> paint = this->paint(p.fill->paint, p);
+      if (!paint) return;
+      canvas_.set_fill_paint(*paint);
+      canvas_.fill(p.path, settings_.rule_override.value_or(p.fill->rule));
+    };
+    auto stroke = [&] {
+      what = "stroke";
+      if (!p.stroke) return;
+      const std::optional<vraster::Paint> paint = this->paint(p.stroke->paint, p);
+      if (!paint) return;
+      canvas_.set_stroke_paint(*paint);
+      set_stroke_style(p.stroke->style);
+      canvas_.stroke(p.path);
+    };
+    try {
+      if (p.stroke_first) {
+        stroke();
+        fill();
+      } else {
+        fill();
+        stroke();
+      }
+    } catch (const ParseError&) {
+      throw;
+    } catch (const Error& e) {
+      // A limit of the core (work or memory per draw call): the message names the element.
+      throw ParseError(file_, p.line, p.column, std::string("cannot draw the ") + what + " of this element: " + e.what());
+    }
+  }
+
+  void image(const ImageNode& n) {
+    if (clip_mode_ || !n.image || n.image->width <= 0 || n.image->height <= 0) return;
+    try {
+      canvas_.save();
+      Path r;
+      r.add_rect(n.clip);
+      canvas_.clip(r, FillRule::NonZero);
+      canvas_.set_image_smoothing(n.smooth);
+      canvas_.draw_image(*n.image, n.dest.x0, n.dest.y0, n.dest.width(), n.dest.height());
+      canvas_.restore();
+    } catch (const Error& e) {
+      throw ParseError(file_, n.line, n.column, std::string("cannot draw this image: ") + e.what());
+    }
+  }
+
+  Canvas& canvas_;
+  const DrawSettings& settings_;
+  const std::string& file_;
+  DrawStats& stats_;
+  int nesting_;
+  bool clip_mode_;
+};
+
+}  // namespace
+
+DrawStats draw_tree(const Tree& tree, Canvas& canvas, const DrawSettings& settings) {
+  DrawStats stats;
+  const std::uint64_t fallbacks_before = canvas.exact_fallbacks();
+  canvas.save();
+  canvas.set_anti_alias(settings.aa);
+  canvas.set_tolerance(settings.tolerance);
+  Drawer(canvas, settings, tree.file, stats, 0, false).group(tree.root);
+  canvas.restore();
+  stats.exact_fallbacks += canvas.exact_fallbacks() - fallbacks_before;
+  return stats;
+}
+
+std::pair<int, int> tree_output_size(const Tree& tree, int width, int height) {
+  Document sizes;
+  sizes.intrinsic_width = tree.width;
+  sizes.intrinsic_height = tree.height;
+  // Fractional sizes round up so the drawing is not cut off (as to_document does).
+  sizes.width = static_cast<int>(std::ceil(tree.width - 1e-9));
+  sizes.height = static_cast<int>(std::ceil(tree.height - 1e-9));
+  return output_size(sizes, width, height);
+}
+
+template <class T>
+DrawStats render_tree(const Tree& tree, BasicImage<T>& image, const DrawSettings& settings) {
+  Canvas canvas(image);
+  if (tree.width > 0 && tree.height > 0) canvas.scale(image.width / tree.width, image.height / tree.height);
+  return draw_tree(tree, canvas, settings);
+}
+
+template DrawStats render_tree<std::uint8_t>(const Tree&, Image&, const DrawSettings&);
+template DrawStats render_tree<std::uint16_t>(const Tree&, Image16&, const DrawSettings&);
+
+Tree load_svg_tree(const std::string& path) {
+  const std::vector<std::uint8_t> bytes = read_file_limited(path, kMaxSvgFileBytes, "SVG file");
+  return parse_svg_tree(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path);
+}
+
+}  // namespace vraster::svg
