@@ -16,6 +16,7 @@
 #include "cli/cli.hpp"
 #include "cli/image_compare.hpp"
 #include "svg_subset/draw.hpp"
+#include "svg_subset/scene.hpp"
 #include "svg_subset/svg.hpp"
 #include "svg_subset/tree.hpp"
 #include "vraster/canvas.hpp"
@@ -34,6 +35,8 @@ constexpr const char* kUsage =
     "  vraster render IN.svg -o OUT.png [-w|--width W] [-h|--height H] [--quiet] [--aa MODE] [--rule RULE]\n"
     "                 [--tolerance T] [--depth 8|16] [--background COLOR|transparent] [--bench N]\n"
     "                 [--hairline bresenham|dda|wu|analytic]   (every stroke as a 1-px hairline)\n"
+    "                 [--no-plan]   (replay every draw call as recorded: no culling, no layer folding)\n"
+    "  vraster explain IN.svg [--json] [-w W] [-h H] [--aa MODE] [--quiet]   (the render plan, call by call)\n"
     "  vraster fill-rules IN.svg -o SHEET.png [--winding] [--aa MODE] [--panel PX]\n"
     "  vraster text \"TEXT\" -o OUT.png [--font FILE]... [--face-index N] [--size PX] [--width W]\n"
     "               [--align left|center|right] [--line-height PX] [--color C] [--background C] [--aa MODE]\n"
@@ -61,6 +64,8 @@ struct RenderArgs {
   int width = 0, height = 0;  ///< requested output size (0: from the document)
   bool quiet = false;         ///< no warnings on stderr
   bool help = false;
+  bool plan = true;           ///< --no-plan: replay the recorded scene naively
+  bool json = false;          ///< explain --json
 };
 
 double parse_number(std::string_view flag, std::string_view text) {
@@ -106,6 +111,10 @@ RenderArgs parse_render_args(int argc, char** argv) {
       (arg == "-w" || arg == "--width" ? a.width : a.height) = static_cast<int>(n);
     } else if (arg == "--quiet") {
       a.quiet = true;
+    } else if (arg == "--no-plan") {
+      a.plan = false;
+    } else if (arg == "--json") {
+      a.json = true;
     } else if (arg == "--aa") {
       const auto v = r.value(arg);
       if (!parse_anti_alias_method(v, a.aa)) throw UsageError{"--aa: unknown mode " + quoted(v)};
@@ -194,19 +203,61 @@ void render_document(const svg::Document& doc, const RenderArgs& a) {
   warn_about_exact_fallbacks(renderer);
 }
 
-/// Everything else: the resolved tree drawn on a canvas (paint servers, clips, masks, layers, blend modes).
-template <class T>
-void render_tree(const svg::Tree& tree, const RenderArgs& a) {
-  const auto [w, h] = svg::tree_output_size(tree, a.width, a.height);
+svg::DrawSettings draw_settings(const RenderArgs& a) {
   svg::DrawSettings settings;
   settings.aa = a.settings.aa;
   settings.tolerance = a.settings.tolerance;
   settings.rule_override = a.settings.rule_override;
-  std::uint64_t fallbacks = 0;
+  return settings;
+}
+
+/// Everything else: the resolved tree drawn on a canvas (paint servers, clips, masks, layers, blend modes),
+/// recorded once as a scene, planned (each frame: planning is part of the render) and replayed.
+template <class T>
+void render_tree(const svg::Tree& tree, const RenderArgs& a) {
+  const auto [w, h] = svg::tree_output_size(tree, a.width, a.height);
+  svg::DrawStats recorded;
+  const Scene scene = svg::record_tree(tree, w, h, draw_settings(a), &recorded);
+  std::uint64_t fallbacks = recorded.exact_fallbacks;
   render_frames<T>(w, h, a, [&](BasicImage<T>& image) {
-    fallbacks += svg::render_tree(tree, image, settings).exact_fallbacks;
+    Canvas canvas(image);
+    if (a.plan) {
+      const ScenePlan plan = plan_scene(scene);
+      canvas.draw_scene(scene, &plan);
+    } else {
+      canvas.draw_scene(scene);
+    }
+    fallbacks += canvas.exact_fallbacks();
   });
   warn_about_exact_fallbacks(fallbacks);
+}
+
+/// `vraster explain IN.svg`: the plan of the document's scene, one line per draw call, and its summary.
+int run_explain(int argc, char** argv) {
+  RenderArgs a;
+  ArgReader r(argc, argv, 2);
+  std::vector<char*> render_style{argv[0], argv[1]};
+  while (!r.done()) {
+    const std::string_view arg = r.next();
+    if (arg == "--help") {
+      std::cout << kUsage;
+      return 0;
+    }
+    render_style.push_back(const_cast<char*>(arg.data()));
+  }
+  render_style.push_back(const_cast<char*>("--bench"));  // explain writes no image
+  render_style.push_back(const_cast<char*>("1"));
+  a = parse_render_args(static_cast<int>(render_style.size()), render_style.data());
+  if (a.settings.hairline || a.depth != 8) throw UsageError{"explain: --hairline and --depth do not apply"};
+  const svg::Tree tree = svg::load_svg_tree(a.input);
+  if (!a.quiet) {
+    for (const std::string& w : tree.warnings) std::cerr << printable(a.input, 1024) << ":" << w << "\n";
+  }
+  const auto [w, h] = svg::tree_output_size(tree, a.width, a.height);
+  const Scene scene = svg::record_tree(tree, w, h, draw_settings(a));
+  const ScenePlan plan = plan_scene(scene);
+  std::cout << (a.json ? explain_plan_json(scene, plan) : explain_plan(scene, plan));
+  return 0;
 }
 
 int run_render(int argc, char** argv) {
@@ -279,6 +330,7 @@ int main(int argc, char** argv) {
     const std::string_view command = argv[1];
     if (command == "render") return cli::run_render(argc, argv);
     if (command == "demo") return cli::run_demo(argc, argv);
+    if (command == "explain") return cli::run_explain(argc, argv);
     if (command == "compare") return cli::run_compare(argc, argv);
     if (command == "fill-rules") return cli::run_fill_rules(argc, argv);
     if (command == "accuracy") return cli::run_accuracy(argc, argv);
