@@ -401,3 +401,43 @@ TEST(CanvasFloodFill, EqualsTheLibraryFillOnTheTarget) {
   options.tolerance = 2;
   EXPECT_THROW(c.flood_fill(12, 12, Color{0, 0, 0, 1}, options), Error);
 }
+
+TEST(SceneDepth, CallsAreDrawnInIncreasingZAndLayersMoveAsOneBlock) {
+  auto rect = [](Canvas& c, Color colour, double x) {
+    c.set_fill_color(colour);
+    c.fill_rect(x, 0, 20, 20);
+  };
+  const Color red{1, 0, 0, 1}, green{0, 1, 0, 1}, blue{0, 0, 1, 1};
+  const Scene scene = record(40, 20, [&](Canvas& c) {
+    c.set_z(2);
+    rect(c, red, 0);     // nearest: on top
+    c.set_z(0);
+    rect(c, green, 10);  // farthest
+    c.set_z(1);
+    c.begin_layer(1.f);  // the layer moves with z 1; inside, its own order
+    c.set_z(5);
+    rect(c, blue, 5);
+    c.set_z(-5);
+    rect(c, green, 15);
+    c.end_layer();
+  });
+  const Scene ordered = order_by_depth(scene);
+  ASSERT_EQ(ordered.commands.size(), scene.commands.size());
+  const Image expected = direct(40, 20, [&](Canvas& c) {
+    rect(c, green, 10);
+    c.begin_layer(1.f);
+    rect(c, green, 15);
+    rect(c, blue, 5);
+    c.end_layer();
+    rect(c, red, 0);
+  });
+  const ScenePlan plan = plan_scene(ordered);
+  EXPECT_EQ(max_difference(expected, replayed(ordered, &plan)), 0);
+  EXPECT_EQ(replayed(ordered, nullptr).pixel(7, 5)[0], 255);    // red over blue
+  EXPECT_EQ(replayed(ordered, nullptr).pixel(22, 5)[2], 255);   // blue over the inner green
+  Scene equal = record(40, 20, [&](Canvas& c) {  // equal depths keep their order
+    rect(c, red, 0);
+    rect(c, green, 10);
+  });
+  EXPECT_EQ(max_difference(replayed(order_by_depth(equal), nullptr), replayed(equal, nullptr)), 0);
+}

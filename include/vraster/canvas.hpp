@@ -108,6 +108,9 @@ class Canvas {
   void set_image_smoothing(bool on);
   void set_image_filter(ImageFilter filter);  ///< the filter used by draw_image when smoothing is on
   void set_shadow(const Shadow& shadow);
+  /// The 2.5D depth of what is drawn next (saved and restored with the state; non-finite values are ignored).
+  /// Drawing onto an image ignores it; a recorded scene can be put in depth order (vraster/scene.hpp).
+  void set_z(double z);
 
   // ---- the current path (points mapped by the transform current when they are added) ----
   void begin_path();

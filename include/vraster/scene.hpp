@@ -35,6 +35,7 @@ struct SceneState {
   bool smoothing = true;
   ImageFilter filter = ImageFilter::Bilinear;
   Shadow shadow;
+  double z = 0;  ///< Canvas::set_z(): order_by_depth() draws smaller z first
 };
 
 /// One clip() of a recorded scene, linked to the clips it intersects (its parent). Calls drawn under the same
@@ -146,6 +147,11 @@ struct ScenePlan {
   int aliased = 0;                          ///< calls drawn without antialiasing work
   int touched_tile_count() const;
 };
+
+/// 2.5D ordering for objects of constant depth (window systems, cartoon cels, VLSI layers): the scene with its
+/// calls in increasing z (Canvas::set_z), calls of equal z in the order they were recorded. A layer moves as one
+/// block with the z of its BeginLayer, and the calls inside it are ordered the same way among themselves.
+Scene order_by_depth(const Scene& scene);
 
 /// Decides, for each command of `scene`, what it needs (see the top of this file).
 ScenePlan plan_scene(const Scene& scene);

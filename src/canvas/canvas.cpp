@@ -206,6 +206,9 @@ void Canvas::set_tolerance(double device_pixels) {
 }
 void Canvas::set_image_smoothing(bool on) { impl_->state.smoothing = on; }
 void Canvas::set_image_filter(ImageFilter filter) { impl_->state.filter = filter; }
+void Canvas::set_z(double z) {
+  if (std::isfinite(z)) impl_->state.z = z;
+}
 void Canvas::set_shadow(const Shadow& shadow) {
   if (!finite_color(shadow.color) || !finite({shadow.offset_x, shadow.offset_y, shadow.blur}) || shadow.blur < 0) {
     return;

@@ -61,6 +61,7 @@ struct State {
   bool smoothing = true;
   ImageFilter filter = ImageFilter::Bilinear;
   Shadow shadow;
+  double z = 0;  // 2.5D depth of recorded calls (order_by_depth)
   std::shared_ptr<const SceneClip> recorded_clip;  // recording: the clips in force, as geometry
 };
 

@@ -16,8 +16,8 @@ SceneCommand& Canvas::Impl::record(SceneCommand::Kind kind) {
   SceneCommand c;
   c.kind = kind;
   const State& s = state;
-  c.state = SceneState{s.transform, s.fill_paint, s.stroke_paint, s.line,      s.global_alpha, s.op,
-                       s.rule,      s.aa,         s.tolerance,    s.smoothing, s.filter,       s.shadow};
+  c.state = SceneState{s.transform, s.fill_paint, s.stroke_paint, s.line,   s.global_alpha, s.op,   s.rule,
+                       s.aa,        s.tolerance,  s.smoothing,    s.filter, s.shadow,       s.z};
   c.clip = s.recorded_clip;
   recording->commands.push_back(std::move(c));
   return recording->commands.back();

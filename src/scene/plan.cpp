@@ -758,3 +758,54 @@ std::string explain_plan_json(const Scene& scene, const ScenePlan& plan) {
 }
 
 }  // namespace vraster
+
+namespace vraster {
+namespace {
+
+/// Appends the commands [first, last) to `out` in depth order: each block (a call, or a layer from its
+/// BeginLayer to its EndLayer) keeps its inside together and is placed by its first command's z.
+void append_by_depth(const Scene& scene, std::size_t first, std::size_t last, std::vector<SceneCommand>& out) {
+  struct Block {
+    std::size_t begin, end;  // [begin, end)
+    double z;
+  };
+  std::vector<Block> blocks;
+  for (std::size_t i = first; i < last;) {
+    std::size_t end = i + 1;
+    if (scene.commands[i].kind == SceneCommand::Kind::BeginLayer) {
+      int depth = 1;
+      while (end < last && depth > 0) {
+        const auto k = scene.commands[end].kind;
+        depth += k == SceneCommand::Kind::BeginLayer ? 1 : k == SceneCommand::Kind::EndLayer ? -1 : 0;
+        ++end;
+      }
+    }
+    blocks.push_back({i, end, scene.commands[i].state.z});
+    i = end;
+  }
+  std::stable_sort(blocks.begin(), blocks.end(), [](const Block& a, const Block& b) { return a.z < b.z; });
+  for (const Block& b : blocks) {
+    const bool layer = scene.commands[b.begin].kind == SceneCommand::Kind::BeginLayer;
+    if (!layer) {
+      out.push_back(scene.commands[b.begin]);
+      continue;
+    }
+    out.push_back(scene.commands[b.begin]);
+    const bool ended = scene.commands[b.end - 1].kind == SceneCommand::Kind::EndLayer && b.end - b.begin >= 2;
+    append_by_depth(scene, b.begin + 1, ended ? b.end - 1 : b.end, out);
+    if (ended) out.push_back(scene.commands[b.end - 1]);
+  }
+}
+
+}  // namespace
+
+Scene order_by_depth(const Scene& scene) {
+  Scene out;
+  out.width = scene.width;
+  out.height = scene.height;
+  out.commands.reserve(scene.commands.size());
+  append_by_depth(scene, 0, scene.commands.size(), out.commands);
+  return out;
+}
+
+}  // namespace vraster
