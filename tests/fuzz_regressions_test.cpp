@@ -68,3 +68,20 @@ TEST(FuzzRegression, StrokeOfPointsNearTheDoubleRangeStaysFinite) {
   EXPECT_EQ(image.pixel(8, 8)[3], 255);
   EXPECT_EQ(image.pixel(8, 2)[3], 0);
 }
+
+// fuzz_canvas: a shadow offset of -1e300 was floored into an int (UBSan), and a blur far wider than the canvas
+// made the shadow's working box exceed the image limit, which threw and dropped the shape itself. Shadows that
+// cannot reach the image are not drawn; the shape always is.
+TEST(FuzzRegression, ShadowsFarOutOfReachLeaveTheShapeDrawn) {
+  for (const Shadow shadow : {Shadow{Color{0, 0, 0, 1}, -1e300, 0, 0}, Shadow{Color{0, 0, 0, 1}, 0, 1e300, 2},
+                              Shadow{Color{0, 0, 0, 1}, 3, 3, 1e300}, Shadow{Color{0, 0, 0, 1}, 3, 3, 1e6}}) {
+    Image image(16, 16);
+    image.clear(Color::transparent());
+    Canvas canvas(image);
+    canvas.set_shadow(shadow);
+    canvas.set_fill_color(Color{1, 0, 0, 1});
+    ASSERT_NO_THROW(canvas.fill_rect(4, 4, 8, 8));
+    EXPECT_EQ(image.pixel(8, 8)[0], 255) << shadow.offset_x << " " << shadow.offset_y << " " << shadow.blur;
+    EXPECT_EQ(image.pixel(8, 8)[3], 255);
+  }
+}
