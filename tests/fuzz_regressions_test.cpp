@@ -7,6 +7,8 @@
 #include "svg_subset/svg.hpp"
 #include "vraster/canvas.hpp"
 #include "vraster/error.hpp"
+#include "vraster/flatten.hpp"
+#include "vraster/raster.hpp"
 #include "vraster/image.hpp"
 #include "vraster/stroke.hpp"
 
@@ -67,4 +69,43 @@ TEST(FuzzRegression, StrokeOfPointsNearTheDoubleRangeStaysFinite) {
   ASSERT_NO_THROW(canvas.stroke());
   EXPECT_EQ(image.pixel(8, 8)[3], 255);
   EXPECT_EQ(image.pixel(8, 2)[3], 0);
+}
+
+// fuzz_canvas: a shadow offset of -1e300 was floored into an int (UBSan), and a blur far wider than the canvas
+// made the shadow's working box exceed the image limit, which threw and dropped the shape itself. Shadows that
+// cannot reach the image are not drawn; the shape always is.
+TEST(FuzzRegression, ShadowsFarOutOfReachLeaveTheShapeDrawn) {
+  for (const Shadow shadow : {Shadow{Color{0, 0, 0, 1}, -1e300, 0, 0}, Shadow{Color{0, 0, 0, 1}, 0, 1e300, 2},
+                              Shadow{Color{0, 0, 0, 1}, 3, 3, 1e300}, Shadow{Color{0, 0, 0, 1}, 3, 3, 1e6}}) {
+    Image image(16, 16);
+    image.clear(Color::transparent());
+    Canvas canvas(image);
+    canvas.set_shadow(shadow);
+    canvas.set_fill_color(Color{1, 0, 0, 1});
+    ASSERT_NO_THROW(canvas.fill_rect(4, 4, 8, 8));
+    EXPECT_EQ(image.pixel(8, 8)[0], 255) << shadow.offset_x << " " << shadow.offset_y << " " << shadow.blur;
+    EXPECT_EQ(image.pixel(8, 8)[3], 255);
+  }
+}
+
+// fuzz_canvas (a 10 s timeout under the sanitizers): a quadratic with its control point at 1e300, filled
+// non-exterior in exact mode on a 2 x 2 canvas. Non-exterior flattens all of the path (what connects to infinity
+// depends on geometry far outside the image): millions of points. Past kMaxNonExteriorPoints it takes the
+// non-zero fallback, counted like the crossing budget's.
+TEST(FuzzRegression, NonExteriorFillOfAnAstronomicalCurveTakesTheFallback) {
+  Path path;
+  path.add_rect(Rect{4, 5.98438, 4 + 1e-07, 5.98438 + 14});
+  path.move_to({4, 5.98438});
+  path.quad_to({1e300, 28}, {-439.531, -403.984});
+  Polylines lines;
+  FlattenOptions options;  // no clip: what non-exterior fills get
+  flatten(path, Affine{}, options, lines);
+  ASSERT_GT(lines.points.size(), Rasterizer::kMaxNonExteriorPoints);
+  struct Nothing final : CoverageSink {
+    void span(int, int, int, float) override {}
+    void row(int, int, int, const float*) override {}
+  } sink;
+  Rasterizer rasterizer;
+  rasterizer.fill(lines, FillRule::NonExterior, AntiAlias::Exact, 2, 2, sink);
+  EXPECT_EQ(rasterizer.exact_fallbacks(), 1u);
 }

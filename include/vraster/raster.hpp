@@ -139,6 +139,9 @@ class Rasterizer {
   /// edges cross more than this many times inside pixel rows is drawn with AntiAlias::Analytic instead (and
   /// NonExterior as NonZero), and counted in exact_fallbacks() so that callers can warn.
   static constexpr std::uint64_t kMaxExactCrossings = std::uint64_t{1} << 22;
+  /// NonExterior resolves its arrangement on all of the geometry, visible or not (clipping would change what
+  /// connects to infinity): a path of more flattened points than this takes the NonZero fallback too.
+  static constexpr std::size_t kMaxNonExteriorPoints = std::size_t{1} << 18;
   /// How many fills of this rasterizer took that fallback so far.
   std::uint64_t exact_fallbacks() const;
 

@@ -2,6 +2,7 @@
 // and images. Where each decision is taken is listed in docs/design.md ("The canvas").
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #include "canvas/canvas_impl.hpp"
@@ -195,9 +196,18 @@ std::vector<T>& layer_pixels(canvas_detail::Layer& layer) {
   }
 }
 
+// Shadows further than this from the shape (offset or blur, in device pixels) cannot reach any image (sides are
+// at most kMaxImageSide): they are not drawn, and no pixel arithmetic ever sees such numbers.
+constexpr double kShadowReachLimit = 1 << 24;
+
 bool shadow_visible(const Shadow& shadow) {
-  return shadow.color.a > 0 && (shadow.blur > 0 || shadow.offset_x != 0 || shadow.offset_y != 0);
+  return shadow.color.a > 0 && (shadow.blur > 0 || shadow.offset_x != 0 || shadow.offset_y != 0) &&
+         std::fabs(shadow.offset_x) < kShadowReachLimit && std::fabs(shadow.offset_y) < kShadowReachLimit &&
+         shadow.blur < kShadowReachLimit;
 }
+
+// The most pixels a shadow's working buffer may take (as an image would): a larger blurred box is not drawn.
+constexpr std::int64_t kMaxShadowPixels = std::int64_t{1} << 26;
 
 // ---- the draw call, for one channel type ----
 
@@ -223,8 +233,7 @@ void Canvas::Impl::draw_typed(CoverageSource& shape, const Paint& paint, const A
     const Point offset{sh.offset_x, sh.offset_y};
     IntRect box = shape.bounds().offset(static_cast<int>(std::floor(offset.x)), static_cast<int>(std::floor(offset.y)));
     box = IntRect{box.x0, box.y0, box.x1 + 1, box.y1 + 1}.expand(reach).intersect(region.expand(reach));
-    if (!box.empty()) {
-      check_image_size(box.width(), box.height());
+    if (!box.empty() && std::int64_t{box.width()} * box.height() <= kMaxShadowPixels) {
       auto& pixels = [&]() -> std::vector<T>& {
         if constexpr (sizeof(T) == 1) {
           return s.shadow8;

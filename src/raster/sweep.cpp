@@ -247,7 +247,7 @@ void detail::RasterizerImpl::fill(const Polylines& lines, FillRule rule, AntiAli
   if (rule == FillRule::NonExterior) {
     // Over the work budget (counted on the visible edges): non-zero, the nearest rule that needs no arrangement.
     build_edges(lines, width, height);
-    if (!exact_within_budget(height)) {
+    if (lines.points.size() > Rasterizer::kMaxNonExteriorPoints || !exact_within_budget(height)) {
       ++exact_fallbacks_;
       rule = FillRule::NonZero;
       if (aa == AntiAlias::Exact) aa = AntiAlias::Analytic;
