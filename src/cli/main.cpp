@@ -203,10 +203,17 @@ void render_tree(const svg::Tree& tree, const RenderArgs& a) {
   settings.tolerance = a.settings.tolerance;
   settings.rule_override = a.settings.rule_override;
   std::uint64_t fallbacks = 0;
+  bool over_budget = false;
   render_frames<T>(w, h, a, [&](BasicImage<T>& image) {
-    fallbacks += svg::render_tree(tree, image, settings).exact_fallbacks;
+    const svg::DrawStats stats = svg::render_tree(tree, image, settings);
+    fallbacks += stats.exact_fallbacks;
+    over_budget = over_budget || stats.over_budget;
   });
   warn_about_exact_fallbacks(fallbacks);
+  if (over_budget) {
+    std::cerr << "vraster: warning: some groups, clip paths, masks or patterns were left out: their offscreen images "
+                 "would have needed more than 2^26 pixels at once (nested effects on a large image)\n";
+  }
 }
 
 int run_render(int argc, char** argv) {
