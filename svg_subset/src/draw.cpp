@@ -242,6 +242,7 @@ class Drawer {
       Path clip_path;
       FillRule rule = FillRule::NonZero;
       if (single_clip_path(*g.clip, bbox, clip_path, rule)) {
+        canvas_.set_anti_alias(settings_.aa);  // not what the last path drawn left (crispEdges draws aliased)
         canvas_.clip(clip_path, rule);
       } else {
         mask = clip_coverage(*g.clip, bbox, ctm);
