@@ -196,7 +196,10 @@ class Drawer {
     if (!clip_mode_ && g.mask && !g.mask->content) return;
     canvas_.save();
     canvas_.transform(g.transform);
-    if (clip_mode_ ? g.clip != nullptr : g.needs_layer()) {
+    if (!clip_mode_ && opacity_only_on_one_paint(g)) {
+      canvas_.set_global_alpha(g.opacity);  // one fill or stroke: its alpha times the opacity is the layer's result
+      children(g);
+    } else if (clip_mode_ ? g.clip != nullptr : g.needs_layer()) {
       effects(g);
     } else {
       children(g);
@@ -205,6 +208,15 @@ class Drawer {
   }
 
  private:
+  /// Whether the group's only effect is opacity and it draws exactly one fill or one stroke.
+  static bool opacity_only_on_one_paint(const Group& g) {
+    if (!(g.opacity < 1) || g.clip || g.mask || g.isolate || g.blend_mode != "normal" || g.children.size() != 1) {
+      return false;
+    }
+    const PathNode* p = std::get_if<PathNode>(&g.children[0].value);
+    return p && (p->fill.has_value() != p->stroke.has_value());
+  }
+
   void children(const Group& g) {
     for (const Node& child : g.children) {
       if (const Group* sub = std::get_if<Group>(&child.value)) {
