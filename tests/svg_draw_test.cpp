@@ -2,8 +2,10 @@
 // pixels can be worked out by hand. Every image is 100 x 100 px at one user unit per pixel, on transparent.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "svg_subset/draw.hpp"
@@ -155,6 +157,30 @@ TEST(SvgDraw, HostileNumbersDrawNothingAndDoNotCrash) {
       "<g opacity='0.5' transform='matrix(0 0 0 0 0 0)'><rect width='10' height='10'/></g>");
   expect_pixel(img, 10, 50, kClear, 0);
   expect_pixel(img, 50, 10, kClear, 0);
+}
+
+TEST(SvgDraw, ImageIsDrawnIntoItsDestinationAndClipped) {
+  // A 2 x 2 image (red, green / blue, white) stretched over (10, 10)-(50, 50), clipped to x < 30: each image
+  // pixel becomes a 20 x 20 block, unsmoothed; the right column is clipped away.
+  auto pixels = std::make_shared<Image>(2, 2);
+  const std::uint8_t rgba[4][4] = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}, {255, 255, 255, 255}};
+  for (int i = 0; i < 4; ++i) std::copy(rgba[i], rgba[i] + 4, pixels->pixel(i % 2, i / 2));
+  Tree tree;
+  tree.width = tree.height = 100;
+  ImageNode node;
+  node.image = pixels;
+  node.view = node.clip = Rect{10, 10, 30, 50};
+  node.dest = Rect{10, 10, 50, 50};
+  node.smooth = false;
+  tree.root.children.push_back(Node{node});
+  tree.root.children.push_back(Node{ImageNode{}});  // no pixels (not decoded): skipped
+  Image img(100, 100);
+  img.clear(Color::transparent());
+  render_tree(tree, img);
+  expect_pixel(img, 15, 15, {255, 0, 0, 255}, 0);
+  expect_pixel(img, 15, 45, {0, 0, 255, 255}, 0);
+  expect_pixel(img, 35, 15, kClear, 0);  // green, clipped
+  expect_pixel(img, 5, 5, kClear, 0);
 }
 
 TEST(SvgDraw, SixteenBitTargetsGetTheSameDrawing) {

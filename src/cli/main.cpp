@@ -219,6 +219,7 @@ void render_tree(const svg::Tree& tree, const RenderArgs& a) {
   svg::DrawStats recorded;
   const Scene scene = svg::record_tree(tree, w, h, draw_settings(a), &recorded);
   std::uint64_t fallbacks = recorded.exact_fallbacks;
+  const bool over_budget = recorded.over_budget;
   render_frames<T>(w, h, a, [&](BasicImage<T>& image) {
     Canvas canvas(image);
     if (a.plan) {
@@ -230,6 +231,10 @@ void render_tree(const svg::Tree& tree, const RenderArgs& a) {
     fallbacks += canvas.exact_fallbacks();
   });
   warn_about_exact_fallbacks(fallbacks);
+  if (over_budget) {
+    std::cerr << "vraster: warning: some groups, clip paths, masks or patterns were left out: their offscreen images "
+                 "would have needed more than 2^26 pixels at once (nested effects on a large image)\n";
+  }
 }
 
 /// `vraster explain IN.svg`: the plan of the document's scene, one line per draw call, and its summary.

@@ -22,6 +22,10 @@ namespace {
 
 // Offscreen images in flight at once (patterns in patterns, masks on masks): deeper content draws nothing.
 constexpr int kMaxNesting = 12;
+// Offscreen pixels alive at once (layers, clip and mask coverage, pattern tiles being drawn), 256 MiB at 8
+// bits: past it a group, clip, mask or pattern is not drawn (nested effects on a large image would otherwise
+// multiply the image's size by the nesting depth).
+constexpr double kMaxLivePixels = double(std::int64_t{1} << 26);
 // Largest pattern tile, in pixels: 2^24, and 4 times the canvas (past that a tile is drawn below device
 // resolution: so large a tile shows one corner at most).
 constexpr double kMaxTilePixels = double(1 << 24);
@@ -71,6 +75,28 @@ std::optional<Rect> bounds_of(const Group& g, const Affine& m) {
   return box;
 }
 
+/// Where a group's children can paint, mapped by `m` (conservative: a stroke reaches at most half its width
+/// times the larger of the miter limit and 1.5 (square caps: 1/sqrt(2) of the width) past the path).
+std::optional<Rect> paint_bounds(const Group& g, const Affine& m) {
+  std::optional<Rect> box;
+  for (const Node& child : g.children) {
+    if (const PathNode* p = std::get_if<PathNode>(&child.value)) {
+      if (p->path.empty()) continue;
+      Rect r = p->path.control_bounds();
+      if (p->stroke) {
+        const double reach = 0.5 * p->stroke->style.width * std::max(p->stroke->style.miter_limit, 1.5);
+        r = {r.x0 - reach, r.y0 - reach, r.x1 + reach, r.y1 + reach};
+      }
+      include(box, transformed_rect(r, m));
+    } else if (const Group* sub = std::get_if<Group>(&child.value)) {
+      if (const auto r = paint_bounds(*sub, m * sub->transform)) include(box, *r);
+    } else if (const ImageNode* image = std::get_if<ImageNode>(&child.value)) {
+      include(box, transformed_rect(image->clip, m));
+    }
+  }
+  return box;
+}
+
 /// A device-pixel rectangle.
 struct Area {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
@@ -88,11 +114,42 @@ Area device_area(const Rect& r, const Affine& m, int w, int h) {
           clamp(std::ceil(d.y1), h)};
 }
 
+/// Pixels counted against kMaxLivePixels while this object lives.
+class Reservation {
+ public:
+  Reservation(double& live, double pixels) : live_(live), pixels_(pixels) { live_ += pixels_; }
+  ~Reservation() { live_ -= pixels_; }
+  Reservation(const Reservation&) = delete;
+  Reservation& operator=(const Reservation&) = delete;
+
+ private:
+  double& live_;
+  double pixels_;
+};
+
+/// What every Drawer of one draw_tree call shares.
+struct Shared {
+  const DrawSettings& settings;
+  const std::string& file;
+  DrawStats& stats;
+  double live_pixels = 0;
+
+  /// Counts `pixels` as alive until the returned object goes; null (and a note in stats) when over the limit.
+  std::shared_ptr<Reservation> reserve(double pixels) {
+    if (!(live_pixels + pixels <= kMaxLivePixels)) {
+      stats.over_budget = true;
+      return nullptr;
+    }
+    return std::make_shared<Reservation>(live_pixels, pixels);
+  }
+};
+
 /// A coverage image in device pixels (every channel holds the coverage, so it works as an alpha mask), its
 /// top-left pixel at (x, y). Pixels outside it have coverage 0.
 struct Coverage {
   std::shared_ptr<Image> image;
   int x = 0, y = 0;
+  std::shared_ptr<Reservation> hold;  // its pixels, counted while it lives
 };
 
 bool uses_box(const ClipPath* clip) {
@@ -130,9 +187,8 @@ class Drawer {
  public:
   /// `clip_mode`: drawing a clipPath's content (paths filled opaque with their clip-rule; paint, stroke,
   /// opacity, masks and images have no effect; clip-path on children does).
-  Drawer(Canvas& canvas, const DrawSettings& settings, const std::string& file, DrawStats& stats, int nesting,
-         bool clip_mode)
-      : canvas_(canvas), settings_(settings), file_(file), stats_(stats), nesting_(nesting), clip_mode_(clip_mode) {}
+  Drawer(Canvas& canvas, Shared& shared, int nesting, bool clip_mode)
+      : canvas_(canvas), shared_(shared), settings_(shared.settings), nesting_(nesting), clip_mode_(clip_mode) {}
 
   void group(const Group& g) {
     if (!clip_mode_ && !(g.opacity > 0)) return;
@@ -140,7 +196,10 @@ class Drawer {
     if (!clip_mode_ && g.mask && !g.mask->content) return;
     canvas_.save();
     canvas_.transform(g.transform);
-    if (clip_mode_ ? g.clip != nullptr : g.needs_layer()) {
+    if (!clip_mode_ && opacity_only_on_one_paint(g)) {
+      canvas_.set_global_alpha(g.opacity);  // one fill or stroke: its alpha times the opacity is the layer's result
+      children(g);
+    } else if (clip_mode_ ? g.clip != nullptr : g.needs_layer()) {
       effects(g);
     } else {
       children(g);
@@ -149,6 +208,15 @@ class Drawer {
   }
 
  private:
+  /// Whether the group's only effect is opacity and it draws exactly one fill or one stroke.
+  static bool opacity_only_on_one_paint(const Group& g) {
+    if (!(g.opacity < 1) || g.clip || g.mask || g.isolate || g.blend_mode != "normal" || g.children.size() != 1) {
+      return false;
+    }
+    const PathNode* p = std::get_if<PathNode>(&g.children[0].value);
+    return p && (p->fill.has_value() != p->stroke.has_value());
+  }
+
   void children(const Group& g) {
     for (const Node& child : g.children) {
       if (const Group* sub = std::get_if<Group>(&child.value)) {
@@ -165,6 +233,19 @@ class Drawer {
   /// coverage image), then a layer with opacity and blend mode unless only a plain clip was needed.
   void effects(const Group& g) {
     const Affine ctm = canvas_.get_transform();
+    // The device pixels the children can touch: the layer and the offscreen images need no more. Clipping to
+    // them (a pixel-aligned rectangle: no mask, no change to what is drawn) keeps the canvas's layer that small.
+    const std::optional<Rect> reach = paint_bounds(g, Affine{});
+    if (!reach) return;
+    const Area area = device_area(*reach, ctm, canvas_.width(), canvas_.height());
+    if (area.empty()) return;
+    const std::shared_ptr<Reservation> hold = shared_.reserve(double(area.width()) * area.height());
+    if (!hold) return;  // too many pixels alive already: the group is left out
+    Path device_rect;
+    device_rect.add_rect(Rect{double(area.x0), double(area.y0), double(area.x1), double(area.y1)});
+    canvas_.set_transform(Affine{});
+    canvas_.clip(device_rect, FillRule::NonZero);
+    canvas_.set_transform(ctm);
     // The box costs a pass over every path below: only when objectBoundingBox units need it.
     const bool box_needed = uses_box(g.clip.get()) || (!clip_mode_ && uses_box(g.mask.get()));
     const std::optional<Rect> bbox = box_needed ? bounds_of(g, Affine{}) : std::nullopt;
@@ -173,6 +254,7 @@ class Drawer {
       Path clip_path;
       FillRule rule = FillRule::NonZero;
       if (single_clip_path(*g.clip, bbox, clip_path, rule)) {
+        canvas_.set_anti_alias(settings_.aa);  // not what the last path drawn left (crispEdges draws aliased)
         canvas_.clip(clip_path, rule);
       } else {
         mask = clip_coverage(*g.clip, bbox, ctm);
@@ -261,10 +343,12 @@ class Drawer {
     if (!content) return std::nullopt;
     const Area area = device_area(*content, ctm, canvas_.width(), canvas_.height());
     if (area.empty()) return std::nullopt;
+    std::shared_ptr<Reservation> hold = shared_.reserve(double(area.width()) * area.height());
+    if (!hold) return std::nullopt;
     Offscreen o = offscreen(area, ctm * *m);
-    Drawer(*o.canvas, settings_, file_, stats_, nesting_ + 1, true).group(*clip.content);
-    stats_.exact_fallbacks += o.canvas->exact_fallbacks();
-    Coverage out{o.image, area.x0, area.y0};
+    Drawer(*o.canvas, shared_, nesting_ + 1, true).group(*clip.content);
+    shared_.stats.exact_fallbacks += o.canvas->exact_fallbacks();
+    Coverage out{o.image, area.x0, area.y0, std::move(hold)};
     if (clip.clip) {
       const std::optional<Coverage> inner = clip_coverage(*clip.clip, bbox, ctm);
       if (!inner) return std::nullopt;
@@ -283,13 +367,15 @@ class Drawer {
     if (!usable_box(rect)) return std::nullopt;
     const Area area = device_area(rect, ctm, canvas_.width(), canvas_.height());
     if (area.empty()) return std::nullopt;
+    std::shared_ptr<Reservation> hold = shared_.reserve(double(area.width()) * area.height());
+    if (!hold) return std::nullopt;
     Offscreen o = offscreen(area, ctm);
     Path r;
     r.add_rect(rect);
     o.canvas->clip(r, FillRule::NonZero);
     if (mask.content_units == Units::ObjectBoundingBox) o.canvas->transform(box_transform(*bbox));
-    Drawer(*o.canvas, settings_, file_, stats_, nesting_ + 1, false).group(*mask.content);
-    stats_.exact_fallbacks += o.canvas->exact_fallbacks();
+    Drawer(*o.canvas, shared_, nesting_ + 1, false).group(*mask.content);
+    shared_.stats.exact_fallbacks += o.canvas->exact_fallbacks();
     // Luminance of the premultiplied colour = luminance of the colour times its alpha (sRGB coefficients).
     Image& img = *o.image;
     for (std::size_t i = 0; i < img.data.size(); i += 4) {
@@ -297,7 +383,7 @@ class Drawer {
       const double v = mask.luminance ? 0.2125 * px[0] + 0.7154 * px[1] + 0.0721 * px[2] : px[3];
       px[0] = px[1] = px[2] = px[3] = static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L));
     }
-    Coverage out{o.image, area.x0, area.y0};
+    Coverage out{o.image, area.x0, area.y0, std::move(hold)};
     if (mask.mask) {
       const std::optional<Coverage> inner = mask_coverage(*mask.mask, bbox, ctm);
       if (!inner) return std::nullopt;
@@ -381,6 +467,10 @@ class Drawer {
       iw = std::max(1.0, std::floor(iw * k));
       ih = std::max(1.0, std::floor(ih * k));
     }
+    // Counted while the tile's content is drawn (nested patterns stack up there); a finished tile is not: it
+    // lives only while one fill or stroke is drawn, so one at a time.
+    const std::shared_ptr<Reservation> hold = shared_.reserve(iw * ih);
+    if (!hold) return std::nullopt;
     auto image = std::make_shared<Image>(static_cast<int>(iw), static_cast<int>(ih));
     {
       Canvas c(*image);
@@ -397,8 +487,8 @@ class Drawer {
       } else if (pat.content_units == Units::ObjectBoundingBox) {
         c.scale(bbox.width(), bbox.height());
       }
-      Drawer(c, settings_, file_, stats_, nesting_ + 1, false).group(*pat.content);
-      stats_.exact_fallbacks += c.exact_fallbacks();
+      Drawer(c, shared_, nesting_ + 1, false).group(*pat.content);
+      shared_.stats.exact_fallbacks += c.exact_fallbacks();
     }
     vraster::Paint out = vraster::Paint::pattern(std::shared_ptr<const Image>(image));
     out.set_extend(Extend::Repeat);
@@ -465,7 +555,7 @@ class Drawer {
       throw;
     } catch (const Error& e) {
       // A limit of the core (work or memory per draw call): the message names the element.
-      throw ParseError(file_, p.line, p.column, std::string("cannot draw the ") + what + " of this element: " + e.what());
+      throw ParseError(shared_.file, p.line, p.column, std::string("cannot draw the ") + what + " of this element: " + e.what());
     }
   }
 
@@ -480,14 +570,13 @@ class Drawer {
       canvas_.draw_image(*n.image, n.dest.x0, n.dest.y0, n.dest.width(), n.dest.height());
       canvas_.restore();
     } catch (const Error& e) {
-      throw ParseError(file_, n.line, n.column, std::string("cannot draw this image: ") + e.what());
+      throw ParseError(shared_.file, n.line, n.column, std::string("cannot draw this image: ") + e.what());
     }
   }
 
   Canvas& canvas_;
+  Shared& shared_;
   const DrawSettings& settings_;
-  const std::string& file_;
-  DrawStats& stats_;
   int nesting_;
   bool clip_mode_;
 };
@@ -500,7 +589,8 @@ DrawStats draw_tree(const Tree& tree, Canvas& canvas, const DrawSettings& settin
   canvas.save();
   canvas.set_anti_alias(settings.aa);
   canvas.set_tolerance(settings.tolerance);
-  Drawer(canvas, settings, tree.file, stats, 0, false).group(tree.root);
+  Shared shared{settings, tree.file, stats};
+  Drawer(canvas, shared, 0, false).group(tree.root);
   canvas.restore();
   stats.exact_fallbacks += canvas.exact_fallbacks() - fallbacks_before;
   return stats;

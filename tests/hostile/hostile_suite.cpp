@@ -110,6 +110,24 @@ std::vector<Case> cases() {
     for (int i = 0; i < 5000; ++i) body += "</g>";
     out.push_back({"deep nesting", {"render", "IN", "-o", "OUT"}, svg(s10, body)});
   }
+  {
+    // Masks in masks, clips in clips, patterns in patterns, 40 deep, on a 4096 x 4096 image: each level wants
+    // offscreen images the size of the image (the offscreen budget and the nesting limit stop it).
+    std::string body;
+    const int n = 40;
+    for (int i = 0; i < n; ++i) {
+      const std::string next = std::to_string(i + 1);
+      body += "<mask id=\"m" + std::to_string(i) + "\"><rect width=\"100\" height=\"100\" fill=\"white\"" +
+              (i + 1 < n ? " mask=\"url(#m" + next + ")\"" : "") + "/></mask>";
+      body += "<clipPath id=\"c" + std::to_string(i) + "\"><rect width=\"100\" height=\"100\"" +
+              (i + 1 < n ? " clip-path=\"url(#c" + next + ")\"" : "") + "/><rect width=\"1\" height=\"1\"/></clipPath>";
+      body += "<pattern id=\"p" + std::to_string(i) + "\" patternUnits=\"userSpaceOnUse\" width=\"90\" height=\"90\">"
+              "<rect width=\"90\" height=\"90\" fill=\"" + (i + 1 < n ? "url(#p" + next + ")" : "red") + "\"/></pattern>";
+    }
+    body += "<rect width=\"100\" height=\"100\" fill=\"url(#p0)\" mask=\"url(#m0)\" clip-path=\"url(#c0)\" opacity=\"0.5\"/>";
+    out.push_back({"masks, clips and patterns nested 40 deep on a 4096 x 4096 image",
+                   {"render", "IN", "-o", "OUT", "-w", "4096"}, svg("width=\"100\" height=\"100\"", body)});
+  }
   out.push_back({"accuracy with missing scenes", {"accuracy", "-o", "OUT"}, ""});
   return out;
 }

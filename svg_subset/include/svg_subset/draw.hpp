@@ -26,6 +26,9 @@ struct DrawSettings {
 struct DrawStats {
   /// Fills that went over the exact-coverage work limit and were drawn analytic (callers warn about them).
   std::uint64_t exact_fallbacks = 0;
+  /// Some group, clip, mask or pattern was left out: its offscreen images would have taken the pixels alive
+  /// at once past 2^26 (deeply nested effects on a large image).
+  bool over_budget = false;
 };
 
 /// Draws `tree` with the canvas's current transform as the viewport's (the tree's root maps its user space to
