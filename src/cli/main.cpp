@@ -32,6 +32,7 @@ constexpr const char* kUsage =
     "  vraster render IN.svg -o OUT.png [-w|--width W] [-h|--height H] [--quiet] [--aa MODE] [--rule RULE]\n"
     "                 [--tolerance T] [--depth 8|16] [--background COLOR|transparent] [--bench N]\n"
     "                 [--hairline bresenham|dda|wu|analytic]   (every stroke as a 1-px hairline)\n"
+    "                 [--allow-dir DIR]   (<image> files may come from DIR too, not only IN.svg's folder)\n"
     "  vraster fill-rules IN.svg -o SHEET.png [--winding] [--aa MODE] [--panel PX]\n"
     "  vraster text \"TEXT\" -o OUT.png [--font FILE]... [--face-index N] [--size PX] [--width W]\n"
     "               [--align left|center|right] [--line-height PX] [--color C] [--background C] [--aa MODE]\n"
@@ -59,6 +60,7 @@ struct RenderArgs {
   int width = 0, height = 0;  ///< requested output size (0: from the document)
   bool quiet = false;         ///< no warnings on stderr
   bool help = false;
+  std::string allow_dir;      ///< --allow-dir: a wider folder <image> files may come from
 };
 
 double parse_number(std::string_view flag, std::string_view text) {
@@ -102,6 +104,8 @@ RenderArgs parse_render_args(int argc, char** argv) {
                          std::to_string(kMaxImageSide)};
       }
       (arg == "-w" || arg == "--width" ? a.width : a.height) = static_cast<int>(n);
+    } else if (arg == "--allow-dir") {
+      a.allow_dir = r.value(arg);
     } else if (arg == "--quiet") {
       a.quiet = true;
     } else if (arg == "--aa") {
@@ -190,7 +194,9 @@ int run_render(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
-  svg::Document doc = svg::load_svg(a.input);
+  svg::ParseOptions options;
+  options.allowed_dir = a.allow_dir;
+  svg::Document doc = svg::load_svg(a.input, options);
   if (!a.quiet) {
     for (const std::string& w : doc.warnings) std::cerr << printable(a.input, 1024) << ":" << w << "\n";
   }
