@@ -1130,7 +1130,10 @@ class Builder {
       image_element(node, style, group, at);
     } else {
       Path geometry = shape_path(node, name);
-      std::optional<Group> markers = markers_of(geometry, style);
+      std::optional<Group> markers =
+          (name == "circle" || name == "ellipse") && !geometry.empty()
+              ? markers_of(detail::ellipse_marker_path(geometry.bounds()), style)
+              : markers_of(geometry, style);
       std::optional<PathNode> path = path_node(node, std::move(geometry), name, style, at);
       if (markers) {
         add_with_markers(std::move(path), std::move(*markers), style.markers_position, group.children);
@@ -1258,13 +1261,11 @@ class Builder {
     const auto cached = markers_.find(node.internal_object());
     if (cached != markers_.end()) return &cached->second;
     MarkerDef def;
-    auto size = [&](const char* name) {
-      // markerWidth and markerHeight: 3 by default; zero or negative disables the marker.
-      const std::optional<double> v = length_attribute(node, name, Axis::Other);
-      return v.value_or(3);
-    };
-    def.width = size("markerWidth");
-    def.height = size("markerHeight");
+    // markerWidth and markerHeight: 3 by default; zero or negative disables the marker. Percentages here and in
+    // refX / refY refer to the viewport the marker is defined in.
+    def.width = length_attribute(node, "markerWidth", Axis::X).value_or(3);
+    def.height = length_attribute(node, "markerHeight", Axis::Y).value_or(3);
+    const Point ref{length_attribute(node, "refX", Axis::X).value_or(0), length_attribute(node, "refY", Axis::Y).value_or(0)};
     def.stroke_units = trim(node.attribute("markerUnits").value()) != "userSpaceOnUse";
     const std::string_view orient = trim(node.attribute("orient").value());
     if (orient == "auto") {
@@ -1282,8 +1283,7 @@ class Builder {
       const double saved_w = percent_width_, saved_h = percent_height_;
       percent_width_ = vb ? vb->width : def.width;
       percent_height_ = vb ? vb->height : def.height;
-      def.ref = def.view_box.apply(Point{length_attribute(node, "refX", Axis::X).value_or(0),
-                                         length_attribute(node, "refY", Axis::Y).value_or(0)});
+      def.ref = def.view_box.apply(ref);
       // Properties inherit from the marker's own ancestors, not from the shape that uses it.
       const Style marker_style = style_from_ancestors(node);
       def.clip = !marker_style.overflow_visible;

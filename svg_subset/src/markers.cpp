@@ -41,14 +41,18 @@ std::optional<Point> end_direction(const Segment& s) {
   return direction(s.p0, s.p1);
 }
 
-double degrees(Point v) { return std::atan2(v.y, v.x) * 180 / kPi; }
+/// The direction of a vector in degrees, in [0, 360).
+double degrees(Point v) {
+  const double d = std::atan2(v.y, v.x) * 180 / kPi;
+  return d < 0 ? d + 360 : d;
+}
 
-/// The marker angle for incoming and outgoing directions (either may be missing).
+/// The marker angle for incoming and outgoing directions (either may be missing): the bisector of the two
+/// directions, on the side of the smaller turn (a U-turn, 180 degrees either way, takes in + 90 - 180 as resvg).
 double vertex_angle(const std::optional<Point>& in, const std::optional<Point>& out) {
   if (in && out) {
-    const double a_in = std::atan2(in->y, in->x), a_out = std::atan2(out->y, out->x);
-    double turn = std::remainder(a_out - a_in, 2 * kPi);  // in [-pi, pi]
-    return (a_in + turn / 2) * 180 / kPi;
+    const double a_in = degrees(*in), half = (degrees(*out) - a_in) / 2;
+    return std::abs(half) > 90 ? a_in + half - 180 : a_in + half;
   }
   if (in) return degrees(*in);
   if (out) return degrees(*out);
@@ -98,6 +102,7 @@ std::vector<Subpath> subpaths(const Path& path) {
 
 std::vector<MarkerVertex> marker_vertices(const Path& path) {
   std::vector<MarkerVertex> out;
+  std::vector<std::optional<Point>> ins;  // each vertex's incoming direction (outgoing ones are used in place)
   for (const Subpath& s : subpaths(path)) {
     const std::size_t n = s.segments.size();
     std::vector<std::optional<Point>> starts(n), ends(n);
@@ -120,19 +125,42 @@ std::vector<MarkerVertex> marker_vertices(const Path& path) {
       return std::nullopt;
     };
     const std::optional<Point> first_out = n > 0 ? outgoing(0) : std::nullopt;
-    const std::optional<Point> last_in = n > 0 ? incoming(n - 1) : std::nullopt;
-    out.push_back(MarkerVertex{MarkerVertex::Kind::Mid, s.start, vertex_angle(s.closed ? last_in : std::nullopt, first_out)});
+    // A subpath's start looks only forwards (as resvg does; the closing vertex is where the loop joins).
+    out.push_back(MarkerVertex{MarkerVertex::Kind::Mid, s.start, vertex_angle(std::nullopt, first_out)});
+    ins.push_back(std::nullopt);
     for (std::size_t k = 0; k < n; ++k) {
       std::optional<Point> next = k + 1 < n ? outgoing(k + 1) : std::nullopt;
       if (k + 1 == n && s.closed) next = first_out;  // the closing vertex joins the first segment again
       out.push_back(MarkerVertex{MarkerVertex::Kind::Mid, s.segments[k].p1, vertex_angle(incoming(k), next)});
+      ins.push_back(incoming(k));
     }
   }
   if (out.empty()) return out;
-  if (out.size() == 1) out.push_back(out.front());
+  if (out.size() == 1) {
+    out.push_back(out.front());
+    ins.push_back(ins.front());
+  }
   out.front().kind = MarkerVertex::Kind::Start;
   out.back().kind = MarkerVertex::Kind::End;
+  // The path's last vertex looks only backwards, even where it closes a loop.
+  if (ins.back()) out.back().angle = vertex_angle(ins.back(), std::nullopt);
   return out;
+}
+
+Path ellipse_marker_path(const Rect& box) {
+  // SVG 2's equivalent path: from (cx + rx, cy) through the four quadrant points in the positive angle
+  // direction, each quarter one segment (a cubic here; only its end points and tangents matter to markers).
+  const double cx = (box.x0 + box.x1) / 2, cy = (box.y0 + box.y1) / 2;
+  const double rx = (box.x1 - box.x0) / 2, ry = (box.y1 - box.y0) / 2;
+  constexpr double k = 0.5522847498307936;  // 4/3 (sqrt(2) - 1)
+  Path p;
+  p.move_to(cx + rx, cy)
+      .cubic_to({cx + rx, cy + k * ry}, {cx + k * rx, cy + ry}, {cx, cy + ry})
+      .cubic_to({cx - k * rx, cy + ry}, {cx - rx, cy + k * ry}, {cx - rx, cy})
+      .cubic_to({cx - rx, cy - k * ry}, {cx - k * rx, cy - ry}, {cx, cy - ry})
+      .cubic_to({cx + k * rx, cy - ry}, {cx + rx, cy - k * ry}, {cx + rx, cy})
+      .close();
+  return p;
 }
 
 }  // namespace vraster::svg::detail

@@ -23,4 +23,8 @@ struct MarkerVertex {
 /// meet.
 std::vector<MarkerVertex> marker_vertices(const Path& path);
 
+/// The path whose vertices carry a circle's or an ellipse's markers (four quarter arcs, SVG 2), for the
+/// ellipse inscribed in `box`: the drawn path has more segments than that.
+Path ellipse_marker_path(const Rect& box);
+
 }  // namespace vraster::svg::detail
