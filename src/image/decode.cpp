@@ -172,6 +172,8 @@ Image decode_gif(std::span<const std::uint8_t> bytes) {
   if (!opened) gif_failed(code);
   GifCloser closer{opened};
   GifFileType* gif = opened;
+  if (gif->SWidth > 0 && gif->SHeight > 0)
+    check_declared_size("GIF", static_cast<std::uint64_t>(gif->SWidth), static_cast<std::uint64_t>(gif->SHeight));
   int transparent = -1;
   for (;;) {
     GifRecordType type = UNDEFINED_RECORD_TYPE;
