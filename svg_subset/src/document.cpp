@@ -776,9 +776,9 @@ class Builder {
     else if (name == "clip-path") s.clip_path = p.clip_path;
     else if (name == "mask") s.mask = p.mask;
     else if (name == "image-rendering") s.smooth_images = p.smooth_images;
-    else if (name == "marker-start") s.marker_start = p.marker_start;
-    else if (name == "marker-mid") s.marker_mid = p.marker_mid;
-    else if (name == "marker-end") s.marker_end = p.marker_end;
+    if (name == "marker-start" || name == "marker") s.marker_start = p.marker_start;
+    if (name == "marker-mid" || name == "marker") s.marker_mid = p.marker_mid;
+    if (name == "marker-end" || name == "marker") s.marker_end = p.marker_end;
   }
 
   // ---- viewports ----
@@ -1132,8 +1132,8 @@ class Builder {
       Path geometry = shape_path(node, name);
       std::optional<Group> markers =
           (name == "circle" || name == "ellipse") && !geometry.empty()
-              ? markers_of(detail::ellipse_marker_path(geometry.bounds()), style)
-              : markers_of(geometry, style);
+              ? markers_of(detail::ellipse_marker_path(geometry.bounds()), style, at)
+              : markers_of(geometry, style, at);
       std::optional<PathNode> path = path_node(node, std::move(geometry), name, style, at);
       if (markers) {
         add_with_markers(std::move(path), std::move(*markers), style.markers_position, group.children);
@@ -1190,15 +1190,15 @@ class Builder {
 
   /// The markers of a shape as one group of instances (in the shape's user space), or nothing when it has
   /// none. Markers on shapes inside a marker are ignored, which also stops a marker from containing itself.
-  std::optional<Group> markers_of(const Path& path, const Style& style) {
-    if (in_marker_ > 0 || !style.visible) return std::nullopt;
+  std::optional<Group> markers_of(const Path& path, const Style& style, std::size_t at) {
+    if (in_marker_ > 0 || in_clip_path_ > 0 || !style.visible) return std::nullopt;
     if (style.marker_start.empty() && style.marker_mid.empty() && style.marker_end.empty()) return std::nullopt;
     Group all;
     for (const detail::MarkerVertex& v : detail::marker_vertices(path)) {
       using K = detail::MarkerVertex::Kind;
       const std::string& id = v.kind == K::Start ? style.marker_start : v.kind == K::Mid ? style.marker_mid : style.marker_end;
       if (id.empty()) continue;
-      const MarkerDef* def = marker_def(id);
+      const MarkerDef* def = marker_def(id, at);
       if (!def || !def->content) continue;
       const double scale = def->stroke_units ? style.stroke_style.width : 1;
       if (!(scale > 0)) continue;
@@ -1214,7 +1214,7 @@ class Builder {
       content.transform = def->view_box;
       element_count_ += count_nodes(content);
       if (element_count_ > kMaxElements)
-        fail(0, "too many elements (the limit is " + std::to_string(kMaxElements) + ", marker instances included)");
+        fail(at, "too many elements (the limit is " + std::to_string(kMaxElements) + ", marker instances included)");
       instance.children.push_back(Node{std::move(content)});
       all.children.push_back(Node{std::move(instance)});
     }
@@ -1252,10 +1252,10 @@ class Builder {
     out.push_back(Node{std::move(second)});
   }
 
-  const MarkerDef* marker_def(const std::string& id) {
+  const MarkerDef* marker_def(const std::string& id, std::size_t at) {
     const pugi::xml_node node = by_id(id);
     if (!node || local_name(node) != "marker") {
-      warn("references", 0, "no marker with id " + quoted(id) + ", ignored");
+      warn("references", at, "no marker with id " + quoted(id) + ", ignored");
       return nullptr;
     }
     const auto cached = markers_.find(node.internal_object());
@@ -1439,11 +1439,12 @@ class Builder {
   /// <image>: a raster image becomes an ImageNode (null pixels when it cannot be had, with a warning); an SVG
   /// document becomes its root group, placed by preserveAspectRatio and clipped to where it shows.
   void image_element(pugi::xml_node node, const Style& style, Group& group, std::size_t at) {
+    if (in_clip_path_ > 0) return;  // not clipPath content (SVG: shapes, text and use only)
     pugi::xml_attribute href = node.attribute("href");
     if (!href) href = node.attribute("xlink:href");
     const std::string_view link = trim(href.value());
-    const LoadedImage& loaded = load_image(link);
     const std::size_t href_at = href ? value_offset(href) : at;
+    const LoadedImage& loaded = load_image(link, href_at);
     if (!loaded.error.empty()) warn("images", href_at, "<image> " + quoted(link) + ": " + loaded.error + "; not drawn");
     // Intrinsic size: the pixels, or the SVG document's own size.
     double iw = 0, ih = 0;
@@ -1521,14 +1522,16 @@ class Builder {
   }
 
   /// The image an href names, loaded once per document (a <use> of an <image> shares the pixels).
-  const LoadedImage& load_image(std::string_view href) {
+  const LoadedImage& load_image(std::string_view href, std::size_t at) {
     const std::string key(href);
     const auto cached = images_.find(key);
     if (cached != images_.end()) return cached->second;
-    return images_.emplace(key, read_image(key)).first->second;
+    return images_.emplace(key, read_image(key, at)).first->second;
   }
 
-  LoadedImage read_image(const std::string& href) {
+  /// Reads, sniffs and decodes (or parses) what an href names; `at` is where the href is, for the warnings of
+  /// an SVG image.
+  LoadedImage read_image(const std::string& href, std::size_t at) {
     LoadedImage out;
     if (href.empty()) {
       out.error = "no href";
@@ -1591,7 +1594,7 @@ class Builder {
       Builder nested(text, name, secure, image_depth_ + 1, pixels_left_);
       auto tree = std::make_shared<Tree>(nested.run());
       if (!tree->warnings.empty())
-        warn("images", 0, "in the SVG image " + quoted(href) + ": " + tree->warnings.front() +
+        warn("images", at, "in the SVG image " + quoted(href) + ": " + tree->warnings.front() +
                               (tree->warnings.size() > 1 ? " (and " + std::to_string(tree->warnings.size() - 1) + " more)" : ""));
       out.svg = std::move(tree);
     } catch (const Error& e) {
@@ -1823,7 +1826,9 @@ class Builder {
     clip->transform = own_transform(node);
     const Style s = computed(node, Style{});
     auto content = std::make_shared<Group>();
+    ++in_clip_path_;  // a clip path is the shapes' geometry: no markers, no images
     children(node, s, content->children, 1);
+    --in_clip_path_;
     clip->content = std::move(content);
     if (!s.clip_path.empty()) clip->clip = clip_path(s.clip_path);
     resolving_.pop_back();
@@ -1881,6 +1886,7 @@ class Builder {
   std::unordered_map<std::string, LoadedImage> images_;
   std::unordered_map<const void*, MarkerDef> markers_;
   int in_marker_ = 0;  // > 0 while a marker's content is built
+  int in_clip_path_ = 0;  // > 0 while a clipPath's content is built
   std::string buffer_;  // the private copy pugixml parses in place
   pugi::xml_document xml_;
   Tree tree_;
