@@ -108,6 +108,22 @@ TEST(SvgMarker, ContentInheritsFromTheMarkersAncestorsNotFromThePath) {
   EXPECT_EQ(rect.fill->paint.color.r, 0);
 }
 
+TEST(SvgMarker, ContextPaintsAreTheMarkedShapesPaints) {
+  const std::string m = "<marker id='c' markerUnits='userSpaceOnUse'><rect width='3' height='3' "
+                        "fill='context-stroke' stroke='context-fill'/></marker>";
+  const Tree t = tree(m + "<path d='M 0 0 L 9 9' fill='lime' stroke='blue' marker-end='url(#c)'/>"
+                          "<path d='M 0 0 L 9 9' fill='red' stroke='yellow' marker-end='url(#c)'/>");
+  for (std::size_t i = 0; i < 2; ++i) {
+    const Group& element = std::get<Group>(t.root.children.at(i).value);
+    const Group& all = std::get<Group>(element.children.at(1).value);
+    const Group& content = std::get<Group>(instance(all, 0).children.at(0).value);
+    const PathNode& rect = std::get<PathNode>(content.children.at(0).value);
+    ASSERT_TRUE(rect.fill && rect.stroke);
+    EXPECT_EQ(rect.fill->paint.color.b, i == 0 ? 1.f : 0.f);    // blue, then yellow
+    EXPECT_EQ(rect.stroke->paint.color.r, i == 0 ? 0.f : 1.f);  // lime, then red
+  }
+}
+
 TEST(SvgMarker, MarkersInsideMarkersAreIgnored) {
   // The marker's content carries markers of its own (here the marker itself): a loop if they were expanded.
   const Tree t = tree("<marker id='m' markerUnits='userSpaceOnUse' overflow='visible'><path d='M 0 0 L 2 2' "

@@ -1178,7 +1178,12 @@ class Builder {
 
   /// A marker element, resolved once: its content and how an instance is placed.
   struct MarkerDef {
-    std::shared_ptr<const Group> content;  ///< null: the marker draws nothing
+    pugi::xml_node node;
+    Style style;                            ///< the marker's computed style (from its own ancestors)
+    double percent_width = 0, percent_height = 0;  ///< what percentages in the content refer to
+    bool usable = false;                    ///< a positive size and a finite viewBox transform
+    std::shared_ptr<const Group> content;   ///< built for the first shape; null: the marker draws nothing
+    bool uses_context = false;              ///< content uses context-fill / context-stroke: built per shape
     Affine view_box;                        ///< content -> marker viewport (viewBox and preserveAspectRatio)
     Point ref;                              ///< refX, refY mapped into the marker viewport
     double width = 3, height = 3;           ///< markerWidth, markerHeight
@@ -1193,13 +1198,25 @@ class Builder {
   std::optional<Group> markers_of(const Path& path, const Style& style, std::size_t at) {
     if (in_marker_ > 0 || in_clip_path_ > 0 || !style.visible) return std::nullopt;
     if (style.marker_start.empty() && style.marker_mid.empty() && style.marker_end.empty()) return std::nullopt;
+    // context-fill and context-stroke in marker content are this shape's paints.
+    const Paint fill = style.visible ? resolve_paint(style.fill, style.fill_opacity, style) : Paint{};
+    const Paint stroke = style.stroke_style.width > 0 ? resolve_paint(style.stroke, style.stroke_opacity, style) : Paint{};
+    std::unordered_map<const MarkerDef*, std::shared_ptr<const Group>> contents;  // per shape, for context paints
+    auto content_of = [&](const MarkerDef* def) {
+      if (!def->uses_context) return def->content;
+      auto& built = contents[def];
+      if (!built) built = marker_content(*def, &fill, &stroke, nullptr);
+      return built;
+    };
     Group all;
     for (const detail::MarkerVertex& v : detail::marker_vertices(path)) {
       using K = detail::MarkerVertex::Kind;
       const std::string& id = v.kind == K::Start ? style.marker_start : v.kind == K::Mid ? style.marker_mid : style.marker_end;
       if (id.empty()) continue;
-      const MarkerDef* def = marker_def(id, at);
-      if (!def || !def->content) continue;
+      const MarkerDef* def = marker_def(id, at, fill, stroke);
+      if (!def || !def->usable) continue;
+      const std::shared_ptr<const Group> marker_content = content_of(def);
+      if (!marker_content) continue;
       const double scale = def->stroke_units ? style.stroke_style.width : 1;
       if (!(scale > 0)) continue;
       double angle = def->angle;
@@ -1210,7 +1227,7 @@ class Builder {
                            Affine::translate(-def->ref.x, -def->ref.y);
       if (!instance.transform.is_finite()) continue;
       if (def->clip) instance.clip = rect_clip(Rect{0, 0, def->width, def->height});
-      Group content = *def->content;
+      Group content = *marker_content;
       content.transform = def->view_box;
       element_count_ += count_nodes(content);
       if (element_count_ > kMaxElements)
@@ -1252,7 +1269,9 @@ class Builder {
     out.push_back(Node{std::move(second)});
   }
 
-  const MarkerDef* marker_def(const std::string& id, std::size_t at) {
+  /// A marker's placement and its content as built for the first shape that uses it (`fill` and `stroke` are
+  /// that shape's paints, for context-fill and context-stroke).
+  const MarkerDef* marker_def(const std::string& id, std::size_t at, const Paint& fill, const Paint& stroke) {
     const pugi::xml_node node = by_id(id);
     if (!node || local_name(node) != "marker") {
       warn("references", at, "no marker with id " + quoted(id) + ", ignored");
@@ -1261,6 +1280,7 @@ class Builder {
     const auto cached = markers_.find(node.internal_object());
     if (cached != markers_.end()) return &cached->second;
     MarkerDef def;
+    def.node = node;
     // markerWidth and markerHeight: 3 by default; zero or negative disables the marker. Percentages here and in
     // refX / refY refer to the viewport the marker is defined in.
     def.width = length_attribute(node, "markerWidth", Axis::X).value_or(3);
@@ -1279,23 +1299,44 @@ class Builder {
     if (const pugi::xml_attribute attr = node.attribute("viewBox")) vb = parse_view_box(attr);
     if (def.width > 0 && def.height > 0) {
       def.view_box = vb ? view_box_transform(*vb, def.width, def.height, node.attribute("preserveAspectRatio")) : Affine{};
+      def.usable = def.view_box.is_finite();
       // Content lengths in percentages refer to the marker's viewBox (or its size).
-      const double saved_w = percent_width_, saved_h = percent_height_;
-      percent_width_ = vb ? vb->width : def.width;
-      percent_height_ = vb ? vb->height : def.height;
+      def.percent_width = vb ? vb->width : def.width;
+      def.percent_height = vb ? vb->height : def.height;
       def.ref = def.view_box.apply(ref);
       // Properties inherit from the marker's own ancestors, not from the shape that uses it.
-      const Style marker_style = style_from_ancestors(node);
-      def.clip = !marker_style.overflow_visible;
-      auto content = std::make_shared<Group>();
-      ++in_marker_;
-      children(node, marker_style, content->children, 1);
-      --in_marker_;
-      percent_width_ = saved_w;
-      percent_height_ = saved_h;
-      if (!content->children.empty() && def.view_box.is_finite()) def.content = std::move(content);
+      def.style = style_from_ancestors(node);
+      def.clip = !def.style.overflow_visible;
+      if (def.usable) def.content = marker_content(def, &fill, &stroke, &def.uses_context);
     }
     return &markers_.emplace(node.internal_object(), std::move(def)).first->second;
+  }
+
+  /// The content of a marker (null when empty), with context paints from `fill` and `stroke`; `uses_context`
+  /// (when given) says whether any was needed.
+  std::shared_ptr<const Group> marker_content(const MarkerDef& def, const Paint* fill, const Paint* stroke,
+                                              bool* uses_context) {
+    const double saved_w = percent_width_, saved_h = percent_height_;
+    const Paint* saved_fill = context_fill_;
+    const Paint* saved_stroke = context_stroke_;
+    const bool saved_used = context_used_;
+    percent_width_ = def.percent_width;
+    percent_height_ = def.percent_height;
+    context_fill_ = fill;
+    context_stroke_ = stroke;
+    context_used_ = false;
+    auto content = std::make_shared<Group>();
+    ++in_marker_;
+    children(def.node, def.style, content->children, 1);
+    --in_marker_;
+    if (uses_context) *uses_context = context_used_;
+    percent_width_ = saved_w;
+    percent_height_ = saved_h;
+    context_fill_ = saved_fill;
+    context_stroke_ = saved_stroke;
+    context_used_ = saved_used;
+    if (content->children.empty()) return nullptr;
+    return content;
   }
 
   /// The computed style of `node` cascaded from the root down through its ancestors.
@@ -1616,8 +1657,15 @@ class Builder {
       } else if (kind == K::CurrentColor) {
         paint.kind = Paint::Kind::Color;
         paint.color = style.current_color;
+      } else if ((kind == K::ContextFill || kind == K::ContextStroke) && context_fill_) {
+        context_used_ = true;
+        const Paint& context = kind == K::ContextFill ? *context_fill_ : *context_stroke_;
+        paint.kind = context.kind;
+        paint.color = context.color;
+        paint.gradient = context.gradient;
+        paint.pattern = context.pattern;
       } else {
-        paint.kind = Paint::Kind::None;  // none, and context paints outside markers and use
+        paint.kind = Paint::Kind::None;  // none, and context paints outside markers
       }
     };
     if (d.kind != K::Url) {
@@ -1887,6 +1935,10 @@ class Builder {
   std::unordered_map<const void*, MarkerDef> markers_;
   int in_marker_ = 0;  // > 0 while a marker's content is built
   int in_clip_path_ = 0;  // > 0 while a clipPath's content is built
+  // While a marker's content is built: the paints of the shape it marks (context-fill, context-stroke).
+  const Paint* context_fill_ = nullptr;
+  const Paint* context_stroke_ = nullptr;
+  bool context_used_ = false;
   std::string buffer_;  // the private copy pugixml parses in place
   pugi::xml_document xml_;
   Tree tree_;
