@@ -176,8 +176,9 @@ constexpr std::size_t kMaxUseInstances = 100'000;
 constexpr int kMaxReferenceDepth = 64;
 /// SVG images inside SVG images: at most this many levels below the document (data: URLs can nest).
 constexpr int kMaxImageNesting = 4;
-/// Decoded image pixels one document may hold, its SVG images included (2 GiB of RGBA8).
-constexpr std::int64_t kMaxDocumentImagePixels = std::int64_t{1} << 29;
+/// Decoded image pixels one document may hold, its SVG images included (512 MiB of RGBA8: two images of the
+/// largest size).
+constexpr std::int64_t kMaxDocumentImagePixels = std::int64_t{1} << 27;
 
 class Builder {
  public:
@@ -1191,6 +1192,7 @@ class Builder {
     enum class Orient { Angle, Auto, AutoStartReverse } orient = Orient::Angle;
     double angle = 0;                       ///< orient as an angle, degrees
     bool clip = true;                       ///< overflow hidden (the default for markers)
+    std::shared_ptr<const ClipPath> viewport_clip;  ///< the clip every instance shares (when `clip`)
   };
 
   /// The markers of a shape as one group of instances (in the shape's user space), or nothing when it has
@@ -1226,7 +1228,7 @@ class Builder {
       instance.transform = Affine::translate(v.at.x, v.at.y) * Affine::rotate(angle) * Affine::scale(scale) *
                            Affine::translate(-def->ref.x, -def->ref.y);
       if (!instance.transform.is_finite()) continue;
-      if (def->clip) instance.clip = rect_clip(Rect{0, 0, def->width, def->height});
+      instance.clip = def->viewport_clip;
       Group content = *marker_content;
       content.transform = def->view_box;
       element_count_ += count_nodes(content);
@@ -1307,6 +1309,7 @@ class Builder {
       // Properties inherit from the marker's own ancestors, not from the shape that uses it.
       def.style = style_from_ancestors(node);
       def.clip = !def.style.overflow_visible;
+      if (def.clip) def.viewport_clip = rect_clip(Rect{0, 0, def.width, def.height});
       if (def.usable) def.content = marker_content(def, &fill, &stroke, &def.uses_context);
     }
     return &markers_.emplace(node.internal_object(), std::move(def)).first->second;
