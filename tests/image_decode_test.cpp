@@ -124,5 +124,29 @@ TEST(ImageDecode, HugeDeclaredSizesAreRefusedBeforeAllocating) {
   EXPECT_THROW(decode_image(webp), Error);
 }
 
+TEST(ImageDecode, ProgressiveJpegWithEndlessScansIsRefused) {
+  Bytes jpeg = test::jpeg_bytes(16, 16, 200, 100, 50, false, true);
+  EXPECT_NO_THROW(decode_image(jpeg));
+  // Repeat the last scan (from its SOS marker to the end-of-image marker) 400 times: every repeat is another
+  // pass over the whole image.
+  std::size_t sos = 0;
+  for (std::size_t i = 0; i + 1 < jpeg.size(); ++i) {
+    if (jpeg[i] == 0xFF && jpeg[i + 1] == 0xDA) sos = i;
+  }
+  ASSERT_GT(sos, 0u);
+  ASSERT_EQ(jpeg[jpeg.size() - 2], 0xFF);
+  const Bytes scan(jpeg.begin() + static_cast<std::ptrdiff_t>(sos), jpeg.end() - 2);
+  Bytes bomb(jpeg.begin(), jpeg.end() - 2);
+  for (int i = 0; i < 400; ++i) bomb.insert(bomb.end(), scan.begin(), scan.end());
+  bomb.push_back(0xFF);
+  bomb.push_back(0xD9);
+  try {
+    decode_image(bomb);
+    ADD_FAILURE() << "decoded a JPEG of more than 400 scans";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("scans"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace vraster

@@ -59,6 +59,19 @@ struct JpegError {
 
 void on_jpeg_message(j_common_ptr) {}  // warnings (corrupt but decodable data) are not printed
 
+/// A progressive JPEG can hold any number of scans, each a pass over the whole image: past this many the data is
+/// refused (libjpeg-turbo's own tools use the same kind of cap against such "scan bombs").
+constexpr int kMaxJpegScans = 256;
+
+void on_jpeg_progress(j_common_ptr info) {
+  const auto* d = reinterpret_cast<j_decompress_ptr>(info);
+  if (d->global_state >= 0 && d->input_scan_number > kMaxJpegScans) {
+    auto* err = reinterpret_cast<JpegError*>(info->err);
+    std::snprintf(err->message, sizeof err->message, "more than %d scans in a progressive JPEG", kMaxJpegScans);
+    std::longjmp(err->jump, 1);
+  }
+}
+
 struct JpegResult {
   int width = 0, height = 0;
   bool cmyk = false, inverted = false;  ///< CMYK data; Adobe's inverted CMYK
@@ -77,6 +90,9 @@ bool read_jpeg(std::span<const std::uint8_t> bytes, JpegError& err, JpegResult& 
   }
   jpeg_create_decompress(&info);
   info.mem->max_memory_to_use = std::size_t{1} << 30;
+  jpeg_progress_mgr progress{};
+  progress.progress_monitor = on_jpeg_progress;
+  info.progress = &progress;
   jpeg_mem_src(&info, bytes.data(), static_cast<unsigned long>(bytes.size()));
   jpeg_read_header(&info, TRUE);
   const std::uint64_t w = info.image_width, h = info.image_height;

@@ -44,8 +44,8 @@ inline Bytes png_bytes(const Image& image) {
   return bytes;
 }
 
-/// A JPEG of one colour (quality 100), 3 components, or 1 (greyscale: only `r` is used).
-inline Bytes jpeg_bytes(int w, int h, int r, int g, int b, bool grey = false) {
+/// A JPEG of one colour (quality 100), 3 components, or 1 (greyscale: only `r` is used); baseline or progressive.
+inline Bytes jpeg_bytes(int w, int h, int r, int g, int b, bool grey = false, bool progressive = false) {
   jpeg_compress_struct info;
   jpeg_error_mgr err;
   info.err = jpeg_std_error(&err);
@@ -59,6 +59,7 @@ inline Bytes jpeg_bytes(int w, int h, int r, int g, int b, bool grey = false) {
   info.in_color_space = grey ? JCS_GRAYSCALE : JCS_RGB;
   jpeg_set_defaults(&info);
   jpeg_set_quality(&info, 100, TRUE);
+  if (progressive) jpeg_simple_progression(&info);
   jpeg_start_compress(&info, TRUE);
   std::vector<JSAMPLE> row(static_cast<std::size_t>(w) * (grey ? 1 : 3));
   for (int x = 0; x < w; ++x) {
