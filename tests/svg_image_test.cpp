@@ -1,6 +1,7 @@
 // <image> in the resolved tree (svg_subset/README.md): placement under preserveAspectRatio, data: URLs of every
 // format, the folder rule for files, SVG documents as images, and hostile input. Checked without pixels.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <functional>
@@ -252,6 +253,13 @@ TEST_F(SvgImageFiles, PathsLeavingTheFolderAreRefused) {
     EXPECT_EQ(t.warnings.size(), 1u);
   }
   EXPECT_TRUE(has_warning(tree(image_element("../outside.png"), options_), "outside the document's folder"));
+  // Inside, but not a regular file: a folder, a FIFO (reading it would block), a missing file.
+  ASSERT_EQ(::mkfifo((root_ / "doc" / "fifo.png").c_str(), 0600), 0);
+  for (const char* href : {"sub", "fifo.png", "missing.png"}) {
+    const Tree t = tree(image_element(href), options_);
+    EXPECT_FALSE(image_of(t).image);
+    EXPECT_TRUE(has_warning(t, "not a regular file")) << href;
+  }
   // A wider allowed folder lets it in.
   ParseOptions wider = options_;
   wider.allowed_dir = root_.string();

@@ -171,6 +171,11 @@ std::optional<std::string> resolve_image_file(std::string_view href, const Parse
     why = "the file lies outside the document's folder (refused)";
     return std::nullopt;
   }
+  // Only regular files: a FIFO would block the reader, a device could be endless.
+  if (!fs::is_regular_file(file, ec)) {
+    why = "no such file (or not a regular file)";
+    return std::nullopt;
+  }
   return file.string();
 }
 
