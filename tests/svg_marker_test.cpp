@@ -124,6 +124,17 @@ TEST(SvgMarker, ContextPaintsAreTheMarkedShapesPaints) {
   }
 }
 
+TEST(SvgMarker, ContextPaintsInUseAreTheUsesPaints) {
+  const Tree t = tree("<defs><rect id='r' width='3' height='3' fill='context-stroke' stroke='context-fill'/></defs>"
+                      "<use href='#r' fill='blue' stroke='lime'/><rect width='3' height='3' fill='context-fill'/>");
+  const Group& use = std::get<Group>(t.root.children.at(0).value);
+  const PathNode& rect = std::get<PathNode>(use.children.at(0).value);
+  ASSERT_TRUE(rect.fill && rect.stroke);
+  EXPECT_EQ(rect.fill->paint.color.g, 1.f);    // lime
+  EXPECT_EQ(rect.stroke->paint.color.b, 1.f);  // blue
+  EXPECT_EQ(t.root.children.size(), 1u);       // no context element: context-fill is none, nothing painted
+}
+
 TEST(SvgMarker, MarkersInsideMarkersAreIgnored) {
   // The marker's content carries markers of its own (here the marker itself): a loop if they were expanded.
   const Tree t = tree("<marker id='m' markerUnits='userSpaceOnUse' overflow='visible'><path d='M 0 0 L 2 2' "

@@ -1444,6 +1444,13 @@ class Builder {
     const double y = length_attribute(node, "y", Axis::Y).value_or(0);
     group.transform = group.transform * Affine::translate(x, y);
     use_stack_.push_back(target);
+    // SVG 2: inside a use, context-fill and context-stroke are the use element's own paints.
+    const Paint context_fill = resolve_paint(style.fill, style.fill_opacity, style);
+    const Paint context_stroke = resolve_paint(style.stroke, style.stroke_opacity, style);
+    const Paint* saved_fill = context_fill_;
+    const Paint* saved_stroke = context_stroke_;
+    context_fill_ = &context_fill;
+    context_stroke_ = &context_stroke;
     if (local_name(target) == "symbol") {
       count_element(element_offset(target), depth + 1);
       const Style symbol_style = computed(target, style);
@@ -1467,6 +1474,8 @@ class Builder {
     } else {
       element(target, style, group.children, depth + 1);
     }
+    context_fill_ = saved_fill;
+    context_stroke_ = saved_stroke;
     use_stack_.pop_back();
     return true;
   }
