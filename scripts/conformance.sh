@@ -75,7 +75,7 @@ run_one() {
   local start end
   start=$(date +%s%N)
   set +e
-  timeout --kill-after=1 "$cap" "$vraster" render "$svg" -o "$ours" -w 300 --quiet >"$log" 2>&1
+  timeout --kill-after=1 "$cap" "$vraster" render "$svg" -o "$ours" -w 300 --quiet --allow-dir "$suite" >"$log" 2>&1
   rc=$?
   set -e
   end=$(date +%s%N)

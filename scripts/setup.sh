@@ -6,7 +6,10 @@ packages=(
   cmake g++ make pkg-config            # toolchain
   libfreetype-dev libharfbuzz-dev      # fonts and shaping (text/)
   libfribidi-dev                       # bidirectional text (text/)
-  libpng-dev                           # PNG output
+  libpng-dev                           # PNG output and input
+  libjpeg62-turbo-dev libgif-dev       # JPEG and GIF input (SVG <image>)
+  libwebp-dev                          # WebP input (SVG <image>)
+  zlib1g-dev                           # .svgz images inside SVG
   libpugixml-dev                       # XML parser (svg_subset/)
   libgtest-dev                         # tests
   libcairo2-dev                        # peer in benchmarks and cross-check tests only

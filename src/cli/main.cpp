@@ -35,8 +35,9 @@ constexpr const char* kUsage =
     "  vraster render IN.svg -o OUT.png [-w|--width W] [-h|--height H] [--quiet] [--aa MODE] [--rule RULE]\n"
     "                 [--tolerance T] [--depth 8|16] [--background COLOR|transparent] [--bench N]\n"
     "                 [--hairline bresenham|dda|wu|analytic]   (every stroke as a 1-px hairline)\n"
+    "                 [--allow-dir DIR]   (<image> files may come from DIR too, not only IN.svg's folder)\n"
     "                 [--no-plan]   (replay every draw call as recorded: no culling, no layer folding)\n"
-    "  vraster explain IN.svg [--json] [-w W] [-h H] [--aa MODE] [--quiet]   (the render plan, call by call)\n"
+    "  vraster explain IN.svg [--json] [-w W] [-h H] [--aa MODE] [--allow-dir DIR] [--quiet]   (the render plan)\n"
     "  vraster fill-rules IN.svg -o SHEET.png [--winding] [--aa MODE] [--panel PX]\n"
     "  vraster text \"TEXT\" -o OUT.png [--font FILE]... [--face-index N] [--size PX] [--width W]\n"
     "               [--align left|center|right] [--line-height PX] [--color C] [--background C] [--aa MODE]\n"
@@ -66,6 +67,7 @@ struct RenderArgs {
   bool help = false;
   bool plan = true;           ///< --no-plan: replay the recorded scene naively
   bool json = false;          ///< explain --json
+  std::string allow_dir;      ///< --allow-dir: a wider folder <image> files may come from
 };
 
 double parse_number(std::string_view flag, std::string_view text) {
@@ -109,6 +111,8 @@ RenderArgs parse_render_args(int argc, char** argv) {
                          std::to_string(kMaxImageSide)};
       }
       (arg == "-w" || arg == "--width" ? a.width : a.height) = static_cast<int>(n);
+    } else if (arg == "--allow-dir") {
+      a.allow_dir = r.value(arg);
     } else if (arg == "--quiet") {
       a.quiet = true;
     } else if (arg == "--no-plan") {
@@ -254,7 +258,9 @@ int run_explain(int argc, char** argv) {
   render_style.push_back(const_cast<char*>("1"));
   a = parse_render_args(static_cast<int>(render_style.size()), render_style.data());
   if (a.settings.hairline || a.depth != 8) throw UsageError{"explain: --hairline and --depth do not apply"};
-  const svg::Tree tree = svg::load_svg_tree(a.input);
+  svg::ParseOptions options;
+  options.allowed_dir = a.allow_dir;
+  const svg::Tree tree = svg::load_svg_tree(a.input, options);
   if (!a.quiet) {
     for (const std::string& w : tree.warnings) std::cerr << printable(a.input, 1024) << ":" << w << "\n";
   }
@@ -271,8 +277,10 @@ int run_render(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
+  svg::ParseOptions options;
+  options.allowed_dir = a.allow_dir;
   if (a.settings.hairline) {
-    svg::Document doc = svg::load_svg(a.input);
+    svg::Document doc = svg::load_svg(a.input, options);
     if (!a.quiet) {
       for (const std::string& w : doc.warnings) std::cerr << printable(a.input, 1024) << ":" << w << "\n";
     }
@@ -287,7 +295,7 @@ int run_render(int argc, char** argv) {
     }
     return 0;
   }
-  const svg::Tree tree = svg::load_svg_tree(a.input);
+  const svg::Tree tree = svg::load_svg_tree(a.input, options);
   if (!a.quiet) {
     for (const std::string& w : tree.warnings) std::cerr << printable(a.input, 1024) << ":" << w << "\n";
   }

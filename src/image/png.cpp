@@ -13,6 +13,7 @@
 
 #include "vraster/error.hpp"
 #include "vraster/files.hpp"
+#include "vraster/image_io.hpp"
 
 namespace vraster {
 namespace {
@@ -94,9 +95,22 @@ struct Decoded {
   int width = 0, height = 0, depth = 8;
 };
 
-// Reads any PNG as straight RGBA, 8 or 16 bits (`want16`), into `pixels`. No C++ object is created between
-// setjmp and the end, so a libpng error can jump out safely.
-bool read_rows(FILE* file, bool want16, Decoded& out, std::vector<png_byte>& pixels, ErrorState& state) {
+// Encoded PNG bytes in memory, read through libpng's read callback.
+struct MemorySource {
+  const png_byte* data = nullptr;
+  std::size_t size = 0, pos = 0;
+};
+
+void read_memory(png_structp png, png_bytep out, png_size_t length) {
+  auto* src = static_cast<MemorySource*>(png_get_io_ptr(png));
+  if (length > src->size - src->pos) png_error(png, "truncated PNG data");
+  std::memcpy(out, src->data + src->pos, length);
+  src->pos += length;
+}
+
+// Reads any PNG as straight RGBA, 8 or 16 bits (`want16`), into `pixels`, from `file` or else from `memory`. No
+// C++ object is created between setjmp and the end, so a libpng error can jump out safely.
+bool read_rows(FILE* file, MemorySource* memory, bool want16, Decoded& out, std::vector<png_byte>& pixels, ErrorState& state) {
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &state, on_png_error, on_png_warning);
   if (!png) return false;
   png_infop info = png_create_info_struct(png);
@@ -104,7 +118,10 @@ bool read_rows(FILE* file, bool want16, Decoded& out, std::vector<png_byte>& pix
     png_destroy_read_struct(&png, &info, nullptr);
     return false;
   }
-  png_init_io(png, file);
+  if (file)
+    png_init_io(png, file);
+  else
+    png_set_read_fn(png, memory, read_memory);
   png_set_user_limits(png, kMaxImageSide, kMaxImageSide);
   png_read_info(png, info);
   const png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
@@ -134,6 +151,22 @@ bool read_rows(FILE* file, bool want16, Decoded& out, std::vector<png_byte>& pix
   return true;
 }
 
+// Straight RGBA rows from read_rows -> a premultiplied image.
+template <class T>
+BasicImage<T> premultiplied(const Decoded& d, const std::vector<png_byte>& pixels) {
+  BasicImage<T> image(d.width, d.height);
+  constexpr std::uint64_t kMax = BasicImage<T>::kMax;
+  for (std::size_t i = 0; i < image.data.size(); i += 4) {
+    std::uint64_t px[4];
+    for (int c = 0; c < 4; ++c) {
+      px[c] = sizeof(T) == 2 ? (std::uint64_t{pixels[(i + c) * 2]} << 8 | pixels[(i + c) * 2 + 1]) : pixels[i + c];
+    }
+    for (int c = 0; c < 3; ++c) image.data[i + c] = static_cast<T>((px[c] * px[3] + kMax / 2) / kMax);
+    image.data[i + 3] = static_cast<T>(px[3]);
+  }
+  return image;
+}
+
 template <class T>
 BasicImage<T> read_png_any(const std::string& path) {
   FILE* file = std::fopen(path.c_str(), "rb");
@@ -148,20 +181,10 @@ BasicImage<T> read_png_any(const std::string& path) {
   ErrorState state;
   Decoded d;
   std::vector<png_byte> pixels;
-  const bool ok = read_rows(file, sizeof(T) == 2, d, pixels, state);
+  const bool ok = read_rows(file, nullptr, sizeof(T) == 2, d, pixels, state);
   std::fclose(file);
   if (!ok) throw Error("cannot read " + path + ": " + state.message);
-  BasicImage<T> image(d.width, d.height);
-  constexpr std::uint64_t kMax = BasicImage<T>::kMax;
-  for (std::size_t i = 0; i < image.data.size(); i += 4) {
-    std::uint64_t px[4];
-    for (int c = 0; c < 4; ++c) {
-      px[c] = sizeof(T) == 2 ? (std::uint64_t{pixels[(i + c) * 2]} << 8 | pixels[(i + c) * 2 + 1]) : pixels[i + c];
-    }
-    for (int c = 0; c < 3; ++c) image.data[i + c] = static_cast<T>((px[c] * px[3] + kMax / 2) / kMax);
-    image.data[i + 3] = static_cast<T>(px[3]);
-  }
-  return image;
+  return premultiplied<T>(d, pixels);
 }
 
 }  // namespace
@@ -172,5 +195,15 @@ void write_png(OutputFile& file, const Image16& image) { encode_png(file, image)
 void write_png(const std::string& path, const Image16& image) { write_png_any(path, image); }
 Image read_png(const std::string& path) { return read_png_any<std::uint8_t>(path); }
 Image16 read_png16(const std::string& path) { return read_png_any<std::uint16_t>(path); }
+
+Image decode_png(std::span<const std::uint8_t> bytes) {
+  if (bytes.size() < 8 || png_sig_cmp(bytes.data(), 0, 8) != 0) throw Error("not PNG data");
+  MemorySource memory{bytes.data(), bytes.size(), 0};
+  ErrorState state;
+  Decoded d;
+  std::vector<png_byte> pixels;
+  if (!read_rows(nullptr, &memory, false, d, pixels, state)) throw Error(std::string("corrupt PNG data: ") + state.message);
+  return premultiplied<std::uint8_t>(d, pixels);
+}
 
 }  // namespace vraster

@@ -5,6 +5,7 @@
 // positions for every message. The element walk carries the inherited properties and the current transform
 // down the tree and emits a fill and/or a stroke DrawItem per shape, in document (= paint) order, fill first.
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -20,12 +21,15 @@
 #include <variant>
 #include <vector>
 
+#include "image_element.hpp"
+#include "markers.hpp"
 #include "scan.hpp"
 #include "xml_check.hpp"
 #include "css.hpp"
 #include "svg_subset/svg.hpp"
 #include "svg_subset/tree.hpp"
 #include "vraster/files.hpp"
+#include "vraster/image_io.hpp"
 
 namespace vraster::svg {
 
@@ -92,6 +96,9 @@ struct Style {
   FillRule clip_rule = FillRule::NonZero;
   bool stroke_first = false;
   bool crisp_edges = false;
+  bool smooth_images = true;  // image-rendering
+  std::string marker_start, marker_mid, marker_end;  // ids from url(#id)
+  std::uint8_t markers_position = 2;  // paint-order: where markers come among the three paints (0, 1 or 2)
   // Not inherited.
   float opacity = 1;
   bool displayed = true;
@@ -127,7 +134,7 @@ constexpr std::string_view kProperties[] = {
     "clip-path",      "clip-rule",        "mask",              "filter",         "mix-blend-mode",
     "isolation",      "stop-color",       "stop-opacity",      "paint-order",    "shape-rendering",
     "overflow",       "marker-start",     "marker-mid",        "marker-end",     "marker",
-    "transform"};
+    "image-rendering", "transform"};
 
 bool is_property(std::string_view name) {
   return std::find(std::begin(kProperties), std::end(kProperties), name) != std::end(kProperties);
@@ -167,10 +174,19 @@ struct XmlAdapter {
 constexpr std::string_view kSvgNamespace = "http://www.w3.org/2000/svg";
 constexpr std::size_t kMaxUseInstances = 100'000;
 constexpr int kMaxReferenceDepth = 64;
+/// SVG images inside SVG images: at most this many levels below the document (data: URLs can nest).
+constexpr int kMaxImageNesting = 4;
+/// Decoded image pixels one document may hold, its SVG images included (512 MiB of RGBA8: two images of the
+/// largest size).
+constexpr std::int64_t kMaxDocumentImagePixels = std::int64_t{1} << 27;
 
 class Builder {
  public:
-  Builder(std::string_view text, const std::string& file) : text_(text), file_(file), lines_(text) {}
+  /// `image_depth` is 0 for a document, n for an SVG image n levels down; `pixels_left` is the decoded-pixel
+  /// budget the document shares with the SVG images inside it.
+  Builder(std::string_view text, const std::string& file, const ParseOptions& options, int image_depth,
+          std::int64_t& pixels_left)
+      : text_(text), file_(file), lines_(text), options_(options), image_depth_(image_depth), pixels_left_(pixels_left) {}
 
   Tree run() {
     buffer_.assign(text_.begin(), text_.end());
@@ -552,7 +568,8 @@ class Builder {
     std::vector<std::pair<css::Origin, std::size_t>> own_origin;
     for (const pugi::xml_attribute attr : node.attributes()) {
       const std::string_view name = attr.name();
-      if (!is_property(name) || name == "transform") continue;  // transform is an attribute here, not CSS
+      // transform is an attribute here, not CSS; the `marker` shorthand is CSS only (SVG 2, 11.6.2).
+      if (!is_property(name) || name == "transform" || name == "marker") continue;
       const std::string_view raw = attr.value();
       const std::string_view v = trim(raw);
       own.push_back(css::Declaration{std::string(name), std::string(v), false,
@@ -687,17 +704,17 @@ class Builder {
       if (v != "auto" && v != "isolate") return bad();
       s.isolate = v == "isolate";
     } else if (name == "paint-order") {
-      // "normal", or fill/stroke/markers in some order: only whether stroke comes before fill matters here.
-      if (v == "normal") {
-        s.stroke_first = false;
-        return;
-      }
-      const std::size_t stroke = v.find("stroke"), fill = v.find("fill");
-      if (stroke == std::string_view::npos && fill == std::string_view::npos && v.find("markers") == std::string_view::npos)
-        return bad();
-      s.stroke_first = stroke != std::string_view::npos && (fill == std::string_view::npos || stroke < fill);
+      const std::optional<std::array<std::string_view, 3>> order = parse_paint_order(v);
+      if (!order) return bad();
+      const auto at = [&](std::string_view paint) { return std::find(order->begin(), order->end(), paint) - order->begin(); };
+      s.stroke_first = at("stroke") < at("fill");
+      s.markers_position = static_cast<std::uint8_t>(at("markers"));
     } else if (name == "shape-rendering") {
       s.crisp_edges = v == "crispEdges" || v == "optimizeSpeed";
+    } else if (name == "image-rendering") {
+      // CSS Images: crisp-edges and pixelated keep pixels sharp; SVG 1.1's optimizeSpeed is read the same way
+      // (as resvg does). auto, smooth, high-quality, optimizeQuality: smooth.
+      s.smooth_images = !(v == "optimizeSpeed" || v == "crisp-edges" || v == "pixelated");
     } else if (name == "overflow") {
       s.overflow_visible = v == "visible" || v == "auto";
     } else if (name == "filter") {
@@ -706,11 +723,35 @@ class Builder {
         warn("unsupported properties", offset, "filter is not supported yet, ignored (reported once)");
       }
     } else if (name.substr(0, 6) == "marker") {
-      if (v != "none" && !warned_marker_) {
-        warned_marker_ = true;
-        warn("unsupported properties", offset, "markers are not drawn yet, ignored (reported once)");
-      }
+      const std::optional<std::string> id = parse_url_reference(v);
+      if (!id) return bad();
+      if (name == "marker-start" || name == "marker") s.marker_start = *id;
+      if (name == "marker-mid" || name == "marker") s.marker_mid = *id;
+      if (name == "marker-end" || name == "marker") s.marker_end = *id;
     }
+  }
+
+  /// paint-order: "normal", or some of fill, stroke, markers (each at most once) followed by the missing ones
+  /// in their normal order. Nothing when malformed.
+  static std::optional<std::array<std::string_view, 3>> parse_paint_order(std::string_view v) {
+    std::array<std::string_view, 3> order{"fill", "stroke", "markers"};
+    if (v == "normal") return order;
+    std::vector<std::string_view> given;
+    while (!(v = trim(v)).empty()) {
+      std::size_t end = 0;
+      while (end < v.size() && !detail::is_wsp(v[end])) ++end;
+      const std::string_view word = v.substr(0, end);
+      v.remove_prefix(end);
+      if (std::find(order.begin(), order.end(), word) == order.end()) return std::nullopt;
+      if (std::find(given.begin(), given.end(), word) != given.end()) return std::nullopt;
+      given.push_back(word);
+    }
+    if (given.empty()) return std::nullopt;
+    for (const std::string_view paint : std::array<std::string_view, 3>{"fill", "stroke", "markers"}) {
+      if (std::find(given.begin(), given.end(), paint) == given.end()) given.push_back(paint);
+    }
+    std::copy(given.begin(), given.end(), order.begin());
+    return order;
   }
 
   /// `inherit`: the parent's value of one property.
@@ -735,6 +776,10 @@ class Builder {
     else if (name == "display") s.displayed = p.displayed;
     else if (name == "clip-path") s.clip_path = p.clip_path;
     else if (name == "mask") s.mask = p.mask;
+    else if (name == "image-rendering") s.smooth_images = p.smooth_images;
+    if (name == "marker-start" || name == "marker") s.marker_start = p.marker_start;
+    if (name == "marker-mid" || name == "marker") s.marker_mid = p.marker_mid;
+    if (name == "marker-end" || name == "marker") s.marker_end = p.marker_end;
   }
 
   // ---- viewports ----
@@ -777,57 +822,61 @@ class Builder {
     return value;
   }
 
+  /// A preserveAspectRatio value (xMidYMid meet when absent or invalid, with a warning).
+  detail::AspectRatio parse_aspect(pugi::xml_attribute aspect) {
+    detail::AspectRatio r;
+    if (!aspect) return r;
+    bool valid = true;
+    std::string_view s = trim(aspect.value());
+    auto next_word = [&s] {
+      s = trim(s);
+      std::size_t end = 0;
+      while (end < s.size() && !detail::is_wsp(s[end])) ++end;
+      const std::string_view word = s.substr(0, end);
+      s.remove_prefix(end);
+      return word;
+    };
+    std::string_view word = next_word();
+    if (word == "defer") word = next_word();
+    if (word == "none") {
+      r.none = true;
+    } else if (word.size() == 8 && word[0] == 'x' && word[4] == 'Y') {
+      auto align = [&valid](std::string_view part) {
+        if (part == "Min") return 0.0;
+        if (part == "Mid") return 0.5;
+        if (part == "Max") return 1.0;
+        valid = false;
+        return 0.5;
+      };
+      r.align_x = align(word.substr(1, 3));
+      r.align_y = align(word.substr(5, 3));
+    } else {
+      valid = false;
+    }
+    const std::string_view mode = next_word();
+    if (mode == "slice")
+      r.slice = true;
+    else if (!mode.empty() && mode != "meet")
+      valid = false;
+    if (!trim(s).empty()) valid = false;
+    if (!valid) {
+      warn("invalid values", value_offset(aspect),
+           "invalid preserveAspectRatio " + quoted(aspect.value()) + ", using xMidYMid meet");
+      r = detail::AspectRatio{};
+    }
+    return r;
+  }
+
   /// The viewBox -> viewport transform for a preserveAspectRatio value (SVG 1.1 section 7.8).
   Affine view_box_transform(const ViewBox& vb, double width, double height, pugi::xml_attribute aspect) {
-    double align_x = 0.5, align_y = 0.5;  // xMidYMid
-    bool none = false, slice = false;
-    if (aspect) {
-      bool valid = true;
-      std::string_view s = trim(aspect.value());
-      auto next_word = [&s] {
-        s = trim(s);
-        std::size_t end = 0;
-        while (end < s.size() && !detail::is_wsp(s[end])) ++end;
-        const std::string_view word = s.substr(0, end);
-        s.remove_prefix(end);
-        return word;
-      };
-      std::string_view word = next_word();
-      if (word == "defer") word = next_word();
-      if (word == "none") {
-        none = true;
-      } else if (word.size() == 8 && word[0] == 'x' && word[4] == 'Y') {
-        auto align = [&valid](std::string_view part) {
-          if (part == "Min") return 0.0;
-          if (part == "Mid") return 0.5;
-          if (part == "Max") return 1.0;
-          valid = false;
-          return 0.5;
-        };
-        align_x = align(word.substr(1, 3));
-        align_y = align(word.substr(5, 3));
-      } else {
-        valid = false;
-      }
-      const std::string_view mode = next_word();
-      if (mode == "slice")
-        slice = true;
-      else if (!mode.empty() && mode != "meet")
-        valid = false;
-      if (!trim(s).empty()) valid = false;
-      if (!valid) {
-        warn("invalid values", value_offset(aspect),
-             "invalid preserveAspectRatio " + quoted(aspect.value()) + ", using xMidYMid meet");
-        align_x = align_y = 0.5;
-        none = slice = false;
-      }
-    }
-    const double sx = width / vb.width, sy = height / vb.height;
-    if (none) return Affine{sx, 0, 0, sy, -vb.x * sx, -vb.y * sy};
-    const double s = slice ? std::max(sx, sy) : std::min(sx, sy);
-    const double tx = -vb.x * s + align_x * (width - vb.width * s);
-    const double ty = -vb.y * s + align_y * (height - vb.height * s);
-    return Affine{s, 0, 0, s, tx, ty};
+    return rect_transform(Rect{vb.x, vb.y, vb.x + vb.width, vb.y + vb.height},
+                          detail::fit_rect(Rect{0, 0, width, height}, vb.width, vb.height, parse_aspect(aspect)));
+  }
+
+  /// The transform that maps rectangle `from` onto rectangle `to`.
+  static Affine rect_transform(const Rect& from, const Rect& to) {
+    const double sx = (to.x1 - to.x0) / (from.x1 - from.x0), sy = (to.y1 - to.y0) / (from.y1 - from.y0);
+    return Affine{sx, 0, 0, sy, to.x0 - from.x0 * sx, to.y0 - from.y0 * sy};
   }
 
   void set_up_viewport(pugi::xml_node root) {
@@ -1080,36 +1129,30 @@ class Builder {
     } else if (name == "use") {
       if (!use_element(node, style, group, depth)) return;
     } else if (name == "image") {
-      ImageNode image;
-      image.id = group.id;
-      pugi::xml_attribute href = node.attribute("href");
-      if (!href) href = node.attribute("xlink:href");
-      image.href = href.value();
-      const double x = length_attribute(node, "x", Axis::X).value_or(0);
-      const double y = length_attribute(node, "y", Axis::Y).value_or(0);
-      image.view = Rect{x, y, x + length_attribute(node, "width", Axis::X).value_or(0),
-                        y + length_attribute(node, "height", Axis::Y).value_or(0)};
-      std::tie(image.line, image.column) = lines_.position(at);
-      if (!warned_image_) {
-        warned_image_ = true;
-        warn("unsupported elements", at, "<image> is not drawn yet, ignored (reported once)");
-      }
-      group.children.push_back(Node{std::move(image)});
+      image_element(node, style, group, at);
     } else {
-      std::optional<PathNode> path = path_node(node, name, style, at);
-      if (!path) return;
-      if (group.transform.is_identity() && !group.needs_layer()) {
+      Path geometry = shape_path(node, name);
+      std::optional<Group> markers =
+          (name == "circle" || name == "ellipse") && !geometry.empty()
+              ? markers_of(detail::ellipse_marker_path(geometry.bounds()), style, at)
+              : markers_of(geometry, style, at);
+      std::optional<PathNode> path = path_node(node, std::move(geometry), name, style, at);
+      if (markers) {
+        add_with_markers(std::move(path), std::move(*markers), style.markers_position, group.children);
+      } else if (!path) {
+        return;
+      } else if (group.transform.is_identity() && !group.needs_layer()) {
         out.push_back(Node{std::move(*path)});
         return;
+      } else {
+        group.children.push_back(Node{std::move(*path)});
       }
-      group.children.push_back(Node{std::move(*path)});
     }
     if (!group.children.empty()) out.push_back(Node{std::move(group)});
   }
 
   /// A shape's PathNode, or nothing when it paints nothing.
-  std::optional<PathNode> path_node(pugi::xml_node node, std::string_view name, const Style& style, std::size_t at) {
-    Path path = shape_path(node, name);
+  std::optional<PathNode> path_node(pugi::xml_node node, Path path, std::string_view name, const Style& style, std::size_t at) {
     const auto verbs = path.verbs();
     if (std::all_of(verbs.begin(), verbs.end(), [](Verb v) { return v == Verb::Move; })) return std::nullopt;
     PathNode p;
@@ -1133,6 +1176,197 @@ class Builder {
     p.stroke_first = style.stroke_first;
     p.crisp_edges = style.crisp_edges;
     return p;
+  }
+
+  // ---- markers ----
+
+  /// A marker element, resolved once: its content and how an instance is placed.
+  struct MarkerDef {
+    pugi::xml_node node;
+    Style style;                            ///< the marker's computed style (from its own ancestors)
+    double percent_width = 0, percent_height = 0;  ///< what percentages in the content refer to
+    bool usable = false;                    ///< a positive size and a finite viewBox transform
+    std::shared_ptr<const Group> content;   ///< built for the first shape; null: the marker draws nothing
+    bool uses_context = false;              ///< content uses context-fill / context-stroke: built per shape
+    Affine view_box;                        ///< content -> marker viewport (viewBox and preserveAspectRatio)
+    Point ref;                              ///< refX, refY mapped into the marker viewport
+    double width = 3, height = 3;           ///< markerWidth, markerHeight
+    bool stroke_units = true;               ///< markerUnits="strokeWidth"
+    enum class Orient { Angle, Auto, AutoStartReverse } orient = Orient::Angle;
+    double angle = 0;                       ///< orient as an angle, degrees
+    bool clip = true;                       ///< overflow hidden (the default for markers)
+    std::shared_ptr<const ClipPath> viewport_clip;  ///< the clip every instance shares (when `clip`)
+  };
+
+  /// The markers of a shape as one group of instances (in the shape's user space), or nothing when it has
+  /// none. Markers on shapes inside a marker are ignored, which also stops a marker from containing itself.
+  std::optional<Group> markers_of(const Path& path, const Style& style, std::size_t at) {
+    if (in_marker_ > 0 || in_clip_path_ > 0 || !style.visible) return std::nullopt;
+    if (style.marker_start.empty() && style.marker_mid.empty() && style.marker_end.empty()) return std::nullopt;
+    // context-fill and context-stroke in marker content are this shape's paints.
+    const Paint fill = style.visible ? resolve_paint(style.fill, style.fill_opacity, style) : Paint{};
+    const Paint stroke = style.stroke_style.width > 0 ? resolve_paint(style.stroke, style.stroke_opacity, style) : Paint{};
+    std::unordered_map<const MarkerDef*, std::shared_ptr<const Group>> contents;  // per shape, for context paints
+    auto content_of = [&](const MarkerDef* def) {
+      if (!def->uses_context) return def->content;
+      auto& built = contents[def];
+      if (!built) built = marker_content(*def, &fill, &stroke, nullptr);
+      return built;
+    };
+    Group all;
+    for (const detail::MarkerVertex& v : detail::marker_vertices(path)) {
+      using K = detail::MarkerVertex::Kind;
+      const std::string& id = v.kind == K::Start ? style.marker_start : v.kind == K::Mid ? style.marker_mid : style.marker_end;
+      if (id.empty()) continue;
+      const MarkerDef* def = marker_def(id, at, fill, stroke);
+      if (!def || !def->usable) continue;
+      const std::shared_ptr<const Group> marker_content = content_of(def);
+      if (!marker_content) continue;
+      const double scale = def->stroke_units ? style.stroke_style.width : 1;
+      if (!(scale > 0)) continue;
+      double angle = def->angle;
+      if (def->orient != MarkerDef::Orient::Angle) angle = v.angle;
+      if (def->orient == MarkerDef::Orient::AutoStartReverse && v.kind == K::Start) angle += 180;
+      Group instance;
+      instance.transform = Affine::translate(v.at.x, v.at.y) * Affine::rotate(angle) * Affine::scale(scale) *
+                           Affine::translate(-def->ref.x, -def->ref.y);
+      if (!instance.transform.is_finite()) continue;
+      instance.clip = def->viewport_clip;
+      Group content = *marker_content;
+      content.transform = def->view_box;
+      element_count_ += count_nodes(content);
+      if (element_count_ > kMaxElements)
+        fail(at, "too many elements (the limit is " + std::to_string(kMaxElements) + ", marker instances included)");
+      instance.children.push_back(Node{std::move(content)});
+      all.children.push_back(Node{std::move(instance)});
+    }
+    if (all.children.empty()) return std::nullopt;
+    return all;
+  }
+
+  /// The path and its markers in paint order: markers first, between fill and stroke (the path split in two),
+  /// or last.
+  static void add_with_markers(std::optional<PathNode> path, Group markers, std::uint8_t position, std::vector<Node>& out) {
+    if (!path || position == 2) {
+      if (path) out.push_back(Node{std::move(*path)});
+      out.push_back(Node{std::move(markers)});
+      return;
+    }
+    if (position == 0 || !path->fill || !path->stroke) {
+      // Markers before both paints, or in the middle of one paint: before the path unless the paint that
+      // comes first is the one it has.
+      const bool path_first = position == 1 && ((path->stroke_first && path->stroke) || (!path->stroke_first && path->fill));
+      if (path_first) out.push_back(Node{std::move(*path)});
+      out.push_back(Node{std::move(markers)});
+      if (!path_first) out.push_back(Node{std::move(*path)});
+      return;
+    }
+    PathNode first = *path, second = std::move(*path);
+    if (first.stroke_first) {
+      first.fill.reset();
+      second.stroke.reset();
+    } else {
+      first.stroke.reset();
+      second.fill.reset();
+    }
+    out.push_back(Node{std::move(first)});
+    out.push_back(Node{std::move(markers)});
+    out.push_back(Node{std::move(second)});
+  }
+
+  /// A marker's placement and its content as built for the first shape that uses it (`fill` and `stroke` are
+  /// that shape's paints, for context-fill and context-stroke).
+  const MarkerDef* marker_def(const std::string& id, std::size_t at, const Paint& fill, const Paint& stroke) {
+    const pugi::xml_node node = by_id(id);
+    if (!node || local_name(node) != "marker") {
+      warn("references", at, "no marker with id " + quoted(id) + ", ignored");
+      return nullptr;
+    }
+    const auto cached = markers_.find(node.internal_object());
+    if (cached != markers_.end()) return &cached->second;
+    MarkerDef def;
+    def.node = node;
+    // markerWidth and markerHeight: 3 by default; zero or negative disables the marker. Percentages here and in
+    // refX / refY refer to the viewport the marker is defined in.
+    def.width = length_attribute(node, "markerWidth", Axis::X).value_or(3);
+    def.height = length_attribute(node, "markerHeight", Axis::Y).value_or(3);
+    const Point ref{length_attribute(node, "refX", Axis::X).value_or(0), length_attribute(node, "refY", Axis::Y).value_or(0)};
+    def.stroke_units = trim(node.attribute("markerUnits").value()) != "userSpaceOnUse";
+    const std::string_view orient = trim(node.attribute("orient").value());
+    if (orient == "auto") {
+      def.orient = MarkerDef::Orient::Auto;
+    } else if (orient == "auto-start-reverse") {
+      def.orient = MarkerDef::Orient::AutoStartReverse;
+    } else if (!orient.empty()) {
+      def.angle = parse_angle(orient).value_or(0);
+    }
+    std::optional<ViewBox> vb;
+    if (const pugi::xml_attribute attr = node.attribute("viewBox")) vb = parse_view_box(attr);
+    if (def.width > 0 && def.height > 0) {
+      def.view_box = vb ? view_box_transform(*vb, def.width, def.height, node.attribute("preserveAspectRatio")) : Affine{};
+      def.usable = def.view_box.is_finite();
+      // Content lengths in percentages refer to the marker's viewBox (or its size).
+      def.percent_width = vb ? vb->width : def.width;
+      def.percent_height = vb ? vb->height : def.height;
+      def.ref = def.view_box.apply(ref);
+      // Properties inherit from the marker's own ancestors, not from the shape that uses it.
+      def.style = style_from_ancestors(node);
+      def.clip = !def.style.overflow_visible;
+      if (def.clip) def.viewport_clip = rect_clip(Rect{0, 0, def.width, def.height});
+      if (def.usable) def.content = marker_content(def, &fill, &stroke, &def.uses_context);
+    }
+    return &markers_.emplace(node.internal_object(), std::move(def)).first->second;
+  }
+
+  /// The content of a marker (null when empty), with context paints from `fill` and `stroke`; `uses_context`
+  /// (when given) says whether any was needed.
+  std::shared_ptr<const Group> marker_content(const MarkerDef& def, const Paint* fill, const Paint* stroke,
+                                              bool* uses_context) {
+    const double saved_w = percent_width_, saved_h = percent_height_;
+    const Paint* saved_fill = context_fill_;
+    const Paint* saved_stroke = context_stroke_;
+    const bool saved_used = context_used_;
+    percent_width_ = def.percent_width;
+    percent_height_ = def.percent_height;
+    context_fill_ = fill;
+    context_stroke_ = stroke;
+    context_used_ = false;
+    auto content = std::make_shared<Group>();
+    ++in_marker_;
+    children(def.node, def.style, content->children, 1);
+    --in_marker_;
+    if (uses_context) *uses_context = context_used_;
+    percent_width_ = saved_w;
+    percent_height_ = saved_h;
+    context_fill_ = saved_fill;
+    context_stroke_ = saved_stroke;
+    context_used_ = saved_used;
+    if (content->children.empty()) return nullptr;
+    return content;
+  }
+
+  /// The computed style of `node` cascaded from the root down through its ancestors.
+  Style style_from_ancestors(pugi::xml_node node) {
+    std::vector<pugi::xml_node> chain;
+    for (pugi::xml_node n = node; n && n.type() == pugi::node_element; n = n.parent()) chain.push_back(n);
+    Style style;
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) style = computed(*it, style);
+    return style;
+  }
+
+  /// An angle: a number of degrees, or a number with deg, grad, rad or turn.
+  static std::optional<double> parse_angle(std::string_view v) {
+    std::size_t pos = 0;
+    double number = 0;
+    if (scan_number(v, pos, number) != NumberScan::Ok) return std::nullopt;
+    const std::string_view unit = v.substr(pos);
+    double factor = 0;
+    if (unit.empty() || unit == "deg") factor = 1;
+    else if (unit == "grad") factor = 0.9;
+    else if (unit == "rad") factor = 180 / 3.14159265358979323846;
+    else if (unit == "turn") factor = 360;
+    if (factor == 0 || !std::isfinite(number * factor)) return std::nullopt;
+    return number * factor;
   }
 
   /// Says why a dashed stroke is drawn solid (the stroker decides the same way, from the same check).
@@ -1167,16 +1401,7 @@ class Builder {
     Group inner;
     inner.transform = Affine::translate(x, y);
     if (vb) inner.transform = inner.transform * view_box_transform(*vb, width, height, node.attribute("preserveAspectRatio"));
-    if (!style.overflow_visible) {
-      auto clip = std::make_shared<ClipPath>();
-      auto content = std::make_shared<Group>();
-      PathNode rect;
-      rect.path.add_rect(Rect{x, y, x + width, y + height});
-      rect.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1}, FillRule::NonZero};
-      content->children.push_back(Node{std::move(rect)});
-      clip->content = std::move(content);
-      group.clip = std::move(clip);
-    }
+    if (!style.overflow_visible) group.clip = rect_clip(Rect{x, y, x + width, y + height});
     const double saved_w = percent_width_, saved_h = percent_height_;
     percent_width_ = vb ? vb->width : width;
     percent_height_ = vb ? vb->height : height;
@@ -1184,6 +1409,18 @@ class Builder {
     percent_width_ = saved_w;
     percent_height_ = saved_h;
     if (!inner.children.empty()) group.children.push_back(Node{std::move(inner)});
+  }
+
+  /// A clip to a rectangle (a viewport's): an anonymous ClipPath holding the rectangle.
+  static std::shared_ptr<const ClipPath> rect_clip(const Rect& r) {
+    auto clip = std::make_shared<ClipPath>();
+    auto content = std::make_shared<Group>();
+    PathNode rect;
+    rect.path.add_rect(r);
+    rect.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1}, FillRule::NonZero};
+    content->children.push_back(Node{std::move(rect)});
+    clip->content = std::move(content);
+    return clip;
   }
 
   /// <use>: an instance of the referenced element (or symbol) under a translate(x, y). Returns false when the
@@ -1211,6 +1448,13 @@ class Builder {
     group.transform = group.transform * Affine::translate(x, y);
     if (in_clip_ && (local_name(target) == "symbol" || local_name(target) == "svg")) return false;
     use_stack_.push_back(target);
+    // SVG 2: inside a use, context-fill and context-stroke are the use element's own paints.
+    const Paint context_fill = resolve_paint(style.fill, style.fill_opacity, style);
+    const Paint context_stroke = resolve_paint(style.stroke, style.stroke_opacity, style);
+    const Paint* saved_fill = context_fill_;
+    const Paint* saved_stroke = context_stroke_;
+    context_fill_ = &context_fill;
+    context_stroke_ = &context_stroke;
     if (local_name(target) == "symbol") {
       count_element(element_offset(target), depth + 1);
       const Style symbol_style = computed(target, style);
@@ -1234,8 +1478,186 @@ class Builder {
     } else {
       element(target, style, group.children, depth + 1);
     }
+    context_fill_ = saved_fill;
+    context_stroke_ = saved_stroke;
     use_stack_.pop_back();
     return true;
+  }
+
+  // ---- <image> ----
+
+  /// What an href gives: decoded pixels, a parsed SVG document, or nothing (`error` says why).
+  struct LoadedImage {
+    std::shared_ptr<const Image> raster;
+    std::shared_ptr<const Tree> svg;
+    std::string error;
+  };
+
+  /// <image>: a raster image becomes an ImageNode (null pixels when it cannot be had, with a warning); an SVG
+  /// document becomes its root group, placed by preserveAspectRatio and clipped to where it shows.
+  void image_element(pugi::xml_node node, const Style& style, Group& group, std::size_t at) {
+    if (in_clip_path_ > 0) return;  // not clipPath content (SVG: shapes, text and use only)
+    pugi::xml_attribute href = node.attribute("href");
+    if (!href) href = node.attribute("xlink:href");
+    const std::string_view link = trim(href.value());
+    const std::size_t href_at = href ? value_offset(href) : at;
+    const LoadedImage& loaded = load_image(link, href_at);
+    if (!loaded.error.empty()) warn("images", href_at, "<image> " + quoted(link) + ": " + loaded.error + "; not drawn");
+    // Intrinsic size: the pixels, or the SVG document's own size.
+    double iw = 0, ih = 0;
+    if (loaded.raster) {
+      iw = loaded.raster->width;
+      ih = loaded.raster->height;
+    } else if (loaded.svg) {
+      iw = loaded.svg->width;
+      ih = loaded.svg->height;
+    }
+    // SVG 2: width and height are auto when absent; auto takes the intrinsic size, or keeps its aspect ratio
+    // when the other side is given.
+    std::optional<double> w = image_size(node, "width", Axis::X), h = image_size(node, "height", Axis::Y);
+    if (!w && !h) {
+      w = iw;
+      h = ih;
+    } else if (!w) {
+      w = ih > 0 ? *h * iw / ih : 0;
+    } else if (!h) {
+      h = iw > 0 ? *w * ih / iw : 0;
+    }
+    if (!(*w > 0) || !(*h > 0) || !style.visible) return;  // a zero size or hidden: nothing drawn
+    const double x = length_attribute(node, "x", Axis::X).value_or(0);
+    const double y = length_attribute(node, "y", Axis::Y).value_or(0);
+    const Rect view{x, y, x + *w, y + *h};
+    const detail::AspectRatio aspect = parse_aspect(node.attribute("preserveAspectRatio"));
+    if (loaded.svg) {
+      const Tree& doc = *loaded.svg;
+      const Rect dest = detail::fit_rect(view, doc.width, doc.height, aspect);
+      // The document shows inside its own canvas and inside the viewport, whichever is smaller.
+      Group clipped;
+      clipped.clip = rect_clip(Rect{std::max(view.x0, dest.x0), std::max(view.y0, dest.y0), std::min(view.x1, dest.x1),
+                                    std::min(view.y1, dest.y1)});
+      Group content = doc.root;
+      content.transform = rect_transform(Rect{0, 0, doc.width, doc.height}, dest) * content.transform;
+      if (!content.transform.is_finite()) fail(at, "image transform out of range");
+      element_count_ += count_nodes(doc.root);
+      if (element_count_ > kMaxElements) fail(at, "too many elements (the limit is " + std::to_string(kMaxElements) +
+                                                      ", SVG images and <use> instances included)");
+      clipped.children.push_back(Node{std::move(content)});
+      group.children.push_back(Node{std::move(clipped)});
+      return;
+    }
+    ImageNode image;
+    image.id = node.attribute("id").value();
+    // A data: URL can be megabytes: the tree keeps its head only.
+    image.href = detail::istarts_with(link, "data:") ? std::string(link.substr(0, link.find(','))) + ",..." : std::string(link);
+    image.image = loaded.raster;
+    image.view = view;
+    image.clip = view;
+    image.dest = loaded.raster ? detail::fit_rect(view, iw, ih, aspect) : view;
+    image.smooth = style.smooth_images;
+    std::tie(image.line, image.column) = lines_.position(at);
+    group.children.push_back(Node{std::move(image)});
+  }
+
+  /// width or height of an <image>: nothing when absent or auto; negative sizes are reported and read as 0.
+  std::optional<double> image_size(pugi::xml_node node, const char* name, Axis axis) {
+    if (trim(node.attribute(name).value()) == "auto") return std::nullopt;
+    std::optional<double> v = length_attribute(node, name, axis);
+    if (v && *v < 0) {
+      warn("negative sizes", value_offset(node.attribute(name)), std::string("<image> with a negative ") + name + ", not drawn");
+      return 0.0;
+    }
+    return v;
+  }
+
+  static std::size_t count_nodes(const Group& g) {
+    std::size_t n = 1;
+    for (const Node& child : g.children) {
+      if (const Group* sub = std::get_if<Group>(&child.value)) n += count_nodes(*sub);
+      else ++n;
+    }
+    return n;
+  }
+
+  /// The image an href names, loaded once per document (a <use> of an <image> shares the pixels).
+  const LoadedImage& load_image(std::string_view href, std::size_t at) {
+    const std::string key(href);
+    const auto cached = images_.find(key);
+    if (cached != images_.end()) return cached->second;
+    return images_.emplace(key, read_image(key, at)).first->second;
+  }
+
+  /// Reads, sniffs and decodes (or parses) what an href names; `at` is where the href is, for the warnings of
+  /// an SVG image.
+  LoadedImage read_image(const std::string& href, std::size_t at) {
+    LoadedImage out;
+    if (href.empty()) {
+      out.error = "no href";
+      return out;
+    }
+    std::vector<std::uint8_t> bytes;
+    std::string mime, name = "<data: URL>";
+    if (detail::istarts_with(href, "data:")) {
+      std::optional<detail::DataUrl> url = detail::parse_data_url(href, out.error);
+      if (!url) return out;
+      bytes = std::move(url->bytes);
+      mime = std::move(url->mime);
+    } else {
+      const std::optional<std::string> path = detail::resolve_image_file(href, options_, out.error);
+      if (!path) return out;
+      try {
+        bytes = read_file_limited(*path, kMaxSvgFileBytes, "image file");
+      } catch (const Error& e) {
+        out.error = e.what();
+        return out;
+      }
+      name = *path;
+    }
+    const std::span<const std::uint8_t> data(bytes);
+    if (sniff_image_format(data) != ImageFormat::Unknown) {
+      if (pixels_left_ <= 0) {
+        out.error = "the document's decoded images reach the limit of " + std::to_string(kMaxDocumentImagePixels) + " pixels";
+        return out;
+      }
+      try {
+        auto image = std::make_shared<Image>(decode_image(data));
+        pixels_left_ -= std::int64_t{image->width} * image->height;
+        out.raster = std::move(image);
+      } catch (const Error& e) {
+        out.error = e.what();
+      } catch (const std::bad_alloc&) {
+        out.error = "out of memory while decoding";
+      }
+      return out;
+    }
+    if (!detail::looks_like_svg(data, mime)) {
+      out.error = "not an image format vraster reads (PNG, JPEG, GIF, WebP, SVG)";
+      return out;
+    }
+    if (image_depth_ >= kMaxImageNesting) {
+      out.error = "SVG images nested more than " + std::to_string(kMaxImageNesting) + " levels deep";
+      return out;
+    }
+    std::string text;
+    if (detail::is_gzip(data)) {
+      std::optional<std::string> inflated = detail::gunzip(data, kMaxSvgFileBytes, out.error);
+      if (!inflated) return out;
+      text = std::move(*inflated);
+    } else {
+      text.assign(bytes.begin(), bytes.end());
+    }
+    try {
+      // Secure mode (SVG 2, "image"): the image reads no external file, whatever its own hrefs say.
+      const ParseOptions secure;
+      Builder nested(text, name, secure, image_depth_ + 1, pixels_left_);
+      auto tree = std::make_shared<Tree>(nested.run());
+      if (!tree->warnings.empty())
+        warn("images", at, "in the SVG image " + quoted(href) + ": " + tree->warnings.front() +
+                              (tree->warnings.size() > 1 ? " (and " + std::to_string(tree->warnings.size() - 1) + " more)" : ""));
+      out.svg = std::move(tree);
+    } catch (const Error& e) {
+      out.error = std::string("the SVG image cannot be used: ") + e.what();
+    }
+    return out;
   }
 
   // ---- paint servers, clip paths, masks ----
@@ -1251,8 +1673,15 @@ class Builder {
       } else if (kind == K::CurrentColor) {
         paint.kind = Paint::Kind::Color;
         paint.color = style.current_color;
+      } else if ((kind == K::ContextFill || kind == K::ContextStroke) && context_fill_) {
+        context_used_ = true;
+        const Paint& context = kind == K::ContextFill ? *context_fill_ : *context_stroke_;
+        paint.kind = context.kind;
+        paint.color = context.color;
+        paint.gradient = context.gradient;
+        paint.pattern = context.pattern;
       } else {
-        paint.kind = Paint::Kind::None;  // none, and context paints outside markers and use
+        paint.kind = Paint::Kind::None;  // none, and context paints outside markers
       }
     };
     if (d.kind != K::Url) {
@@ -1464,7 +1893,9 @@ class Builder {
     const Style s = computed(node, Style{});
     auto content = std::make_shared<Group>();
     const bool was_in_clip = std::exchange(in_clip_, true);
+    ++in_clip_path_;  // a clip path is the shapes' geometry: no markers, no images
     children(node, s, content->children, 1);
+    --in_clip_path_;
     in_clip_ = was_in_clip;
     clip->content = std::move(content);
     if (!s.clip_path.empty()) clip->clip = clip_path(s.clip_path);
@@ -1519,6 +1950,17 @@ class Builder {
   std::string_view text_;
   const std::string& file_;
   LineIndex lines_;
+  const ParseOptions& options_;
+  int image_depth_ = 0;
+  std::int64_t& pixels_left_;
+  std::unordered_map<std::string, LoadedImage> images_;
+  std::unordered_map<const void*, MarkerDef> markers_;
+  int in_marker_ = 0;  // > 0 while a marker's content is built
+  int in_clip_path_ = 0;  // > 0 while a clipPath's content is built
+  // While a marker's content is built: the paints of the shape it marks (context-fill, context-stroke).
+  const Paint* context_fill_ = nullptr;
+  const Paint* context_stroke_ = nullptr;
+  bool context_used_ = false;
   std::string buffer_;  // the private copy pugixml parses in place
   pugi::xml_document xml_;
   Tree tree_;
@@ -1537,8 +1979,8 @@ class Builder {
   std::unordered_map<const void*, std::shared_ptr<const ClipPath>> clips_;
   std::unordered_map<const void*, std::shared_ptr<const Mask>> masks_;
   std::unordered_set<const void*> invalid_;  // clip paths and masks found in a reference loop
-  bool warned_filter_ = false, warned_marker_ = false, warned_image_ = false;
-  bool in_clip_ = false;  // building a clipPath's content: geometry only
+  bool warned_filter_ = false;
+  bool in_clip_ = false;  // building a clipPath's content: geometry only (reset inside masks and patterns)
   struct WarningCount {
     std::string_view kind;  // always a string literal
     std::size_t count;
@@ -1653,7 +2095,12 @@ class Flattener {
 
 }  // namespace
 
-Tree parse_svg_tree(std::string_view text, const std::string& file) { return Builder(text, file).run(); }
+Tree parse_svg_tree(std::string_view text, const std::string& file) { return parse_svg_tree(text, file, ParseOptions{}); }
+
+Tree parse_svg_tree(std::string_view text, const std::string& file, const ParseOptions& options) {
+  std::int64_t pixels_left = kMaxDocumentImagePixels;
+  return Builder(text, file, options, 0, pixels_left).run();
+}
 
 Document to_document(const Tree& tree) {
   Document doc;
@@ -1672,9 +2119,16 @@ Document to_document(const Tree& tree) {
 
 Document parse_svg(std::string_view text, const std::string& file) { return to_document(parse_svg_tree(text, file)); }
 
-Document load_svg(const std::string& path) {
+Document parse_svg(std::string_view text, const std::string& file, const ParseOptions& options) {
+  return to_document(parse_svg_tree(text, file, options));
+}
+
+Document load_svg(const std::string& path) { return load_svg(path, ParseOptions{}); }
+
+Document load_svg(const std::string& path, ParseOptions options) {
   const std::vector<std::uint8_t> bytes = read_file_limited(path, kMaxSvgFileBytes, "SVG file");
-  return parse_svg(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path);
+  if (options.base_dir.empty()) options.base_dir = detail::folder_of(path);
+  return parse_svg(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path, options);
 }
 
 }  // namespace vraster::svg

@@ -12,6 +12,7 @@
 #include <memory>
 #include <vector>
 
+#include "image_element.hpp"
 #include "svg_subset/svg.hpp"
 #include "vraster/composite.hpp"
 #include "vraster/files.hpp"
@@ -616,9 +617,10 @@ DrawStats render_tree(const Tree& tree, BasicImage<T>& image, const DrawSettings
 template DrawStats render_tree<std::uint8_t>(const Tree&, Image&, const DrawSettings&);
 template DrawStats render_tree<std::uint16_t>(const Tree&, Image16&, const DrawSettings&);
 
-Tree load_svg_tree(const std::string& path) {
+Tree load_svg_tree(const std::string& path, ParseOptions options) {
   const std::vector<std::uint8_t> bytes = read_file_limited(path, kMaxSvgFileBytes, "SVG file");
-  return parse_svg_tree(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path);
+  if (options.base_dir.empty()) options.base_dir = detail::folder_of(path);  // images next to the file
+  return parse_svg_tree(std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()), path, options);
 }
 
 }  // namespace vraster::svg

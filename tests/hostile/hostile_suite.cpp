@@ -128,6 +128,25 @@ std::vector<Case> cases() {
     out.push_back({"masks, clips and patterns nested 40 deep on a 4096 x 4096 image",
                    {"render", "IN", "-o", "OUT", "-w", "4096"}, svg("width=\"100\" height=\"100\"", body)});
   }
+  {
+    // Marker instances count as elements: 300000 vertices of five-element markers stop at the element limit.
+    std::string points;
+    for (int i = 0; i < 300000; ++i) points += std::to_string(i % 100) + "," + std::to_string(i % 7) + " ";
+    out.push_back({"300000 marker instances", {"render", "IN", "-o", "OUT"},
+                   svg(s10, "<marker id=\"m\"><rect width=\"1\" height=\"1\"/><rect width=\"1\" height=\"1\"/>"
+                            "<rect width=\"1\" height=\"1\"/><rect width=\"1\" height=\"1\"/></marker>"
+                            "<polyline points=\"" + points + "\" stroke=\"red\" marker-mid=\"url(#m)\"/>")});
+  }
+  {
+    // SVG images nested through data: URLs far beyond the nesting limit.
+    std::string doc = svg(s10, "<rect width=\"5\" height=\"5\"/>");
+    for (int level = 0; level < 12; ++level) {
+      std::string escaped;
+      for (const char c : doc) escaped += c == '<' ? "%3C" : c == '>' ? "%3E" : c == '"' ? "%22" : c == '%' ? "%25" : std::string(1, c);
+      doc = svg(s10, "<image width=\"10\" height=\"10\" href=\"data:image/svg+xml," + escaped + "\"/>");
+    }
+    out.push_back({"SVG images nested 12 deep", {"render", "IN", "-o", "OUT"}, doc});
+  }
   out.push_back({"accuracy with missing scenes", {"accuracy", "-o", "OUT"}, ""});
   return out;
 }

@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "svg_subset/svg.hpp"
 #include "svg_subset/tree.hpp"
 #include "vraster/canvas.hpp"
 #include "vraster/flatten.hpp"
@@ -45,6 +46,7 @@ template <class T>
 DrawStats render_tree(const Tree& tree, BasicImage<T>& image, const DrawSettings& settings = {});
 
 /// Reads and parses a file into the resolved tree (throws vraster::Error when it cannot be read).
-Tree load_svg_tree(const std::string& path);
+/// Images may come from the file's folder (options.base_dir defaults to it), as load_svg.
+Tree load_svg_tree(const std::string& path, ParseOptions options = {});
 
 }  // namespace vraster::svg

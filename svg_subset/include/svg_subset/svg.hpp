@@ -97,6 +97,14 @@ void scale_to(Document& doc, int width, int height);
 
 struct Tree;
 
+/// Where <image> may read files from. Relative hrefs resolve against `base_dir` and must stay inside
+/// `allowed_dir` (empty: base_dir itself) once `..` and symbolic links are resolved; absolute paths and URLs
+/// with a scheme other than data: are never read. An empty base_dir reads no file at all (data: URLs only).
+struct ParseOptions {
+  std::string base_dir;     ///< the document's folder (load_svg fills it in when empty)
+  std::string allowed_dir;  ///< a wider folder files may come from (e.g. a test suite's root); empty: base_dir
+};
+
 /// Flattens a resolved tree (tree.hpp) into draw items for the core Renderer: what it cannot draw yet
 /// (gradients, patterns, clip paths, masks, blend modes) is left out with a warning.
 Document to_document(const Tree& tree);
@@ -105,8 +113,11 @@ Document to_document(const Tree& tree);
 /// for a document that cannot be used at all (malformed XML, no <svg> root, a size that cannot be resolved or
 /// is out of range, a limit exceeded); invalid values are ignored with a warning, as browsers do.
 Document parse_svg(std::string_view text, const std::string& file = "<memory>");
-/// Reads and parses a file (throws vraster::Error when it cannot be read).
+Document parse_svg(std::string_view text, const std::string& file, const ParseOptions& options);
+/// Reads and parses a file (throws vraster::Error when it cannot be read). Images may come from the file's
+/// folder (options.base_dir defaults to it).
 Document load_svg(const std::string& path);
+Document load_svg(const std::string& path, ParseOptions options);
 
 /// Render settings shared by every item (a rule given here overrides the file's fill-rule).
 struct RenderSettings {

@@ -17,6 +17,7 @@
 #include "vraster/path.hpp"
 #include "vraster/raster.hpp"
 #include "vraster/stroke.hpp"
+#include "svg_subset/svg.hpp"
 
 namespace vraster::svg {
 
@@ -162,6 +163,8 @@ struct Tree {
 /// Parses SVG text into the resolved tree. Throws ParseError (svg.hpp) only for a document that cannot be used
 /// at all: malformed XML, no <svg> root, a size that cannot be resolved or is out of range, a reference loop,
 /// a limit exceeded. Invalid values are treated as not given, with a warning.
+/// No file is read unless `options` names a base folder (see ParseOptions).
 Tree parse_svg_tree(std::string_view text, const std::string& file = "<memory>");
+Tree parse_svg_tree(std::string_view text, const std::string& file, const ParseOptions& options);
 
 }  // namespace vraster::svg
