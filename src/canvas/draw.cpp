@@ -6,6 +6,7 @@
 
 #include "canvas/canvas_impl.hpp"
 #include "canvas/shadow_blur.hpp"
+#include "raster/rect.hpp"
 #include "vraster/error.hpp"
 
 namespace vraster {
@@ -302,39 +303,14 @@ void Canvas::Impl::stroke_user_path(const Path& user_path, const Affine& to_devi
 namespace {
 
 // Whether `lines` is one axis-aligned rectangle with whole-pixel corners. Sets `box` and the winding number of
-// its inside (+1 counterclockwise on screen).
+// its inside.
 bool pixel_aligned_rectangle(const Polylines& lines, IntRect& box, int& winding) {
-  std::size_t contour = lines.contour_count();
-  const std::span<const Point> pts = contour == 1 ? lines.contour(0) : std::span<const Point>{};
-  if (pts.empty()) return false;
-  Point corner[5];
-  int n = 0;
-  for (const Point& p : pts) {
-    if (n > 0 && p == corner[n - 1]) continue;
-    if (n == 5) return false;
-    corner[n++] = p;
+  Rect r;
+  if (!detail::axis_aligned_rectangle(lines, r, winding)) return false;
+  for (const double v : {r.x0, r.y0, r.x1, r.y1}) {
+    if (v != std::round(v) || std::abs(v) > 1e9) return false;
   }
-  if (n == 5 && corner[4] == corner[0]) n = 4;
-  if (n != 4) return false;
-  for (int i = 0; i < 4; ++i) {
-    const Point a = corner[i], b = corner[(i + 1) % 4];
-    if (a.x != b.x && a.y != b.y) return false;  // not axis-aligned
-    if (a.x != std::round(a.x) || a.y != std::round(a.y) || std::abs(a.x) > 1e9 || std::abs(a.y) > 1e9) return false;
-  }
-  // Alternating horizontal and vertical sides.
-  const bool first_horizontal = corner[0].y == corner[1].y;
-  for (int i = 0; i < 4; ++i) {
-    const bool horizontal = corner[i].y == corner[(i + 1) % 4].y;
-    if (horizontal != (first_horizontal == (i % 2 == 0))) return false;
-  }
-  double area2 = 0;
-  for (int i = 0; i < 4; ++i) area2 += cross(corner[i], corner[(i + 1) % 4]);
-  if (area2 == 0) return false;
-  Rect r = Rect::from_point(corner[0]);
-  for (int i = 1; i < 4; ++i) r.include(corner[i]);
   box = {static_cast<int>(r.x0), static_cast<int>(r.y0), static_cast<int>(r.x1), static_cast<int>(r.y1)};
-  // y points down: a positive shoelace sum is clockwise on screen, whose inside winds -1.
-  winding = area2 > 0 ? -1 : 1;
   return true;
 }
 
