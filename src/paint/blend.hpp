@@ -282,6 +282,8 @@ inline std::uint32_t quantize8(float v) {
 }
 
 // The source-over loops (composite.cpp: compiled for AVX2 and for any x86-64, picked at load time).
+/// n pixels set to one colour.
+void store8(std::uint32_t* px, int n, std::uint32_t c);
 /// One colour, one coverage for the whole run.
 void over8_constant(std::uint32_t* px, int n, std::uint32_t s);
 /// A row of colours scaled by one coverage k.
@@ -306,7 +308,7 @@ void composite_run(T* dst, const T* src, int src_step, const float* coverage, fl
       if (src_step == 0) {
         const std::uint32_t c = k == 255 ? s[0] : scale8(s[0], k);
         if (c >> 24 == 255) {
-          std::fill(px, px + n, c);  // opaque: a store
+          store8(px, n, c);  // opaque: a store
         } else if (c != 0) {
           over8_constant(px, n, c);
         }

@@ -25,6 +25,12 @@ namespace detail {
 #define VRASTER_PAINT_CLONES
 #endif
 
+/// An opaque colour replacing n pixels: a plain store loop (memset-like). The AVX2 clone stores 32 bytes at a time,
+/// which is what lets it keep up with memset rather than with 16-byte stores.
+VRASTER_PAINT_CLONES void store8(std::uint32_t* px, int n, std::uint32_t c) {
+  for (int i = 0; i < n; ++i) px[i] = c;
+}
+
 /// One colour, one coverage for the whole run.
 VRASTER_PAINT_CLONES void over8_constant(std::uint32_t* px, int n, std::uint32_t s) {
   const std::uint32_t inv = 255u - (s >> 24);
@@ -185,7 +191,7 @@ void Compositor<T>::span(int y, int x0, int x1, float coverage) {
       std::uint32_t packed;
       std::memcpy(&packed, c, 4);
       auto* px = reinterpret_cast<std::uint32_t*>(static_cast<void*>(dst));
-      std::fill(px, px + n, packed);
+      detail::store8(px, n, packed);
     } else {
       for (int i = 0; i < n; ++i) std::memcpy(dst + 4 * i, c, 4 * sizeof(T));
     }
