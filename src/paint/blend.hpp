@@ -3,7 +3,8 @@
 // Rounding (docs/design.md, "Paint and compositing"): with M = 255 (8 bits) or 65535 (16 bits),
 // Three image operations, each rounded to nearest once (the HTML canvas model: the shape is an image, at the
 // target's depth, whose alpha is its coverage; it is composited with the operator; the clip then lerps):
-//   1. coverage x global alpha and the clip are quantized: k = round(M * clamp(cov, 0, 1)), c likewise;
+//   1. coverage x global alpha is quantized: k = round(M * clamp(cov, 0, 1)); the clip c comes as levels in [0, M]
+//      (the canvas stores its clip mask quantized so: round(M * clip coverage));
 //      the source is scaled: s' = round(s k / M) per channel;
 //   2. r = round(Op(s', d)): Porter-Duff operators, lighter and the polynomial blend modes (multiply, screen,
 //      darken, lighten, difference, exclusion) as one integer expression, exact; the other blend modes in float
@@ -290,12 +291,13 @@ void over8_constant(std::uint32_t* px, int n, std::uint32_t s);
 void over8_row(std::uint32_t* px, const std::uint32_t* src, int n, std::uint32_t k);
 /// Colours (src_step 0: one colour) scaled by per-pixel coverage x scale, optionally lerped by a clip.
 void over8_masked(std::uint32_t* px, const std::uint32_t* src, int src_step, const float* coverage, float scale,
-                  const float* clip, int n);
+                  const std::uint8_t* clip, int n);
 
 /// Composites n pixels. The source advances by `src_step` channels a pixel (0: one colour for the whole run).
-/// coverage == nullptr: every pixel has coverage `scale`; else coverage[i] * scale. clip may be null (all 1).
+/// coverage == nullptr: every pixel has coverage `scale`; else coverage[i] * scale. clip: levels in [0, M], may be
+/// null (all M).
 template <class T, CompositeOp Op>
-void composite_run(T* dst, const T* src, int src_step, const float* coverage, float scale, const float* clip, int n) {
+void composite_run(T* dst, const T* src, int src_step, const float* coverage, float scale, const T* clip, int n) {
   using CM = ChannelMath<T>;
   using W = typename CM::Wide;
   constexpr W M = CM::M;
@@ -326,7 +328,7 @@ void composite_run(T* dst, const T* src, int src_step, const float* coverage, fl
   const W k_const = CM::quantize(scale);
   for (int i = 0; i < n; ++i, dst += 4, src += src_step) {
     const W k = coverage ? CM::quantize(coverage[i] * scale) : k_const;
-    const W c = clip ? CM::quantize(clip[i]) : M;
+    const W c = clip ? W{clip[i]} : M;
     if (c == 0) continue;
     if (bounded && (k == 0 || src[3] == 0)) continue;
     T s[4], r[4];
@@ -345,7 +347,7 @@ void composite_run(T* dst, const T* src, int src_step, const float* coverage, fl
 }
 
 template <class T>
-using CompositeRunFn = void (*)(T*, const T*, int, const float*, float, const float*, int);
+using CompositeRunFn = void (*)(T*, const T*, int, const float*, float, const T*, int);
 
 /// The run loop for `op`.
 template <class T>
