@@ -318,6 +318,52 @@ TEST(Composite8, SourceOverWithCoverageAndClipFollowsTheRuleExactly) {
   }
 }
 
+// The 8-bit source-over loops run their first pixels apart until the destination is 32-byte aligned: every start
+// offset and length must give what one-pixel calls give (every loop variant: constant / row source, with and
+// without coverage and clip, opaque store).
+TEST(Composite8, SourceOverIsTheSameAtEveryAlignment) {
+  std::mt19937 rng(5);
+  std::vector<std::uint8_t> src(64 * 4), base(80 * 4);
+  std::vector<float> cov(64);
+  std::vector<std::uint8_t> clip(64);
+  for (auto& v : base) v = static_cast<std::uint8_t>(rng());
+  for (std::size_t i = 0; i < 64; ++i) {
+    random_pixel(rng, &src[i * 4]);
+    cov[i] = static_cast<float>(rng() % 256) / 255.f;
+    clip[i] = static_cast<std::uint8_t>(rng());
+  }
+  const std::uint8_t opaque[4] = {10, 20, 30, 255};
+  for (int offset = 0; offset < 9; ++offset) {
+    for (int n = 0; n <= 40; ++n) {
+      for (int variant = 0; variant < 5; ++variant) {
+        std::vector<std::uint8_t> whole = base, single = base;
+        auto run = [&](std::uint8_t* dst, int first, int count) {
+          const float* c = variant >= 1 && variant <= 2 ? cov.data() + first : nullptr;
+          const std::uint8_t* k = variant == 2 || variant == 3 ? clip.data() + first : nullptr;
+          if (variant == 4) {  // opaque pixels one by one (the store is checked against this)
+            for (int i = 0; i < count; ++i) blend_row_alpha(CompositeOp::SourceOver, dst + 4 * i, opaque, 1.f, nullptr, 1);
+          } else if (variant == 0) {
+            blend_row_alpha(CompositeOp::SourceOver, dst, src.data() + 4 * first, 0.7f, nullptr, count);
+          } else {
+            blend_row(CompositeOp::SourceOver, dst, src.data() + 4 * first, c, k, count);
+          }
+        };
+        if (variant == 4) {
+          // The compositor's store: one colour, full coverage, opaque.
+          Compositor<std::uint8_t> comp;
+          ImageView<std::uint8_t> view{whole.data() + 4 * offset, 0, 0, n, 1, 4 * 64};
+          comp.set(view, Paint::solid({10 / 255.f, 20 / 255.f, 30 / 255.f, 1}), Affine{}, CompositeOp::SourceOver);
+          if (n > 0) comp.span(0, 0, n, 1.f);
+        } else {
+          run(whole.data() + 4 * offset, 0, n);
+        }
+        for (int i = 0; i < n; ++i) run(single.data() + 4 * (offset + i), i, 1);
+        ASSERT_EQ(whole, single) << "offset " << offset << " n " << n << " variant " << variant;
+      }
+    }
+  }
+}
+
 TEST(Composite8, CoverageScalesTheSourceAndClipLerps) { check_coverage_and_clip<std::uint8_t>(); }
 TEST(Composite16, CoverageScalesTheSourceAndClipLerps) { check_coverage_and_clip<std::uint16_t>(); }
 

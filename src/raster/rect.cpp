@@ -131,12 +131,24 @@ bool detail::RasterizerImpl::fill_rect(const Polylines& lines, FillRule rule, An
       cell[i0 + 1] += h * m0;
       cell[i1] += -h * (1.0 - m1);
       cell[i1 + 1] += -h * m1;
-      double sum = 0;
+      // The running sum changes only at those four cells (adding an untouched cell's 0 changes no bit): coverage
+      // is computed there, and the stretches between them are filled with the value they hold.
+      int touched[4] = {i0, i0 + 1, i1, i1 + 1};
+      std::sort(touched, touched + 4);
       with_rule(rule, [&](auto rc) {
-        for (int i = px0; i < px1; ++i) {
-          sum += cell[i];
-          cov[i - px0] = coverage_of<decltype(rc)::value>(sum);
+        double sum = 0;
+        float c = 0;
+        int x = px0;
+        for (int k = 0; k < 4; ++k) {
+          const int t = touched[k];
+          if (t >= px1 || (k > 0 && t == touched[k - 1])) continue;
+          std::fill(cov + (x - px0), cov + (t - px0), c);
+          sum += cell[t];
+          c = coverage_of<decltype(rc)::value>(sum);
+          cov[t - px0] = c;
+          x = t + 1;
         }
+        std::fill(cov + (x - px0), cov + n, c);
       });
       cell[i0] = cell[i0 + 1] = cell[i1] = cell[i1 + 1] = 0;
       return;
