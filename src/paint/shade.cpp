@@ -399,7 +399,9 @@ void sample_bilinear8(const Image& tile, FixedAxis ax, FixedAxis ay, std::uint32
   const std::uint8_t* pixels = tile.data.data();
   auto texel = [&](int x, int y) {
     std::uint32_t v = 0;
-    if (x >= 0 && y >= 0) std::memcpy(&v, pixels + stride * static_cast<std::size_t>(y) + 4 * static_cast<std::size_t>(x), 4);
+    // Only extend None marks texels outside the tile (-1): the other modes always land inside.
+    const bool inside = (EX != Extend::None || x >= 0) && (EY != Extend::None || y >= 0);
+    if (inside) std::memcpy(&v, pixels + stride * static_cast<std::size_t>(y) + 4 * static_cast<std::size_t>(x), 4);
     return v;
   };
   for (int k0 = 0; k0 < n; k0 += kChunk) {
