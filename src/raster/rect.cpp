@@ -98,7 +98,8 @@ bool detail::RasterizerImpl::fill_rect(const Polylines& lines, FillRule rule, An
                                        CoverageSink& sink) {
   Rect r;
   int winding = 0;
-  if (!rect_shortcut_ || (aa == AntiAlias::Exact && !exact_shortcut_)) return false;  // (tests: the other sweeps)
+  // Switched off (tests compare), or exact fills told to take the boundary sweep: the general path.
+  if (!rect_shortcut_ || (aa == AntiAlias::Exact && !exact_shortcut_)) return false;
   if (!axis_aligned_rectangle(lines, r, winding)) return false;
   if (rule == FillRule::NonExterior) rule = FillRule::NonZero;  // a rectangle's inside is all it encloses
   if (!winding_fills(rule, winding)) return true;
