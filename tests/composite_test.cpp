@@ -253,7 +253,10 @@ void check_coverage_and_clip() {
                        op == CompositeOp::Darken || op == CompositeOp::Lighten || op == CompositeOp::Difference ||
                        op == CompositeOp::Exclusion;
     std::vector<T> out = dst;
-    blend_row(op, out.data(), src.data(), cov.data(), clip.data(), kCount);
+    // The clip as levels (round(m * clip): how a clip mask is stored).
+    std::vector<T> clip_levels(kCount);
+    for (int i = 0; i < kCount; ++i) clip_levels[static_cast<std::size_t>(i)] = static_cast<T>(std::round(clip[static_cast<std::size_t>(i)] * m));
+    blend_row(op, out.data(), src.data(), cov.data(), clip_levels.data(), kCount);
     for (std::size_t i = 0; i < out.size(); i += 4) {
       const float cv = cov[i / 4], cl = clip[i / 4];
       const double kq = std::round(cv * m), cq = std::round(cl * m);
@@ -284,7 +287,8 @@ TEST(Composite8, SourceOverWithCoverageAndClipFollowsTheRuleExactly) {
   // Every (source channel, source alpha, coverage) with destination and clip sampled: blend_row against the
   // stepwise rule above, through the vectorised source-over loops.
   std::vector<std::uint8_t> src, dst;
-  std::vector<float> cov, clip;
+  std::vector<float> cov;
+  std::vector<std::uint8_t> clip;  // levels
   for (int as = 0; as < 256; as += 5) {
     for (int cs = 0; cs <= as; cs += 3) {
       for (int k = 0; k < 256; k += 1) {
@@ -293,7 +297,7 @@ TEST(Composite8, SourceOverWithCoverageAndClipFollowsTheRuleExactly) {
         dst.insert(dst.end(), {static_cast<std::uint8_t>(k), static_cast<std::uint8_t>(255 - k),
                                static_cast<std::uint8_t>((k * 7) % 256), 255});
         cov.push_back(k / 255.f);
-        clip.push_back(((k * 13) % 256) / 255.f);
+        clip.push_back(static_cast<std::uint8_t>((k * 13) % 256));
       }
     }
   }
@@ -302,13 +306,59 @@ TEST(Composite8, SourceOverWithCoverageAndClipFollowsTheRuleExactly) {
     std::vector<std::uint8_t> out = dst;
     blend_row(CompositeOp::SourceOver, out.data(), src.data(), cov.data(), with_clip ? clip.data() : nullptr, n);
     for (std::size_t i = 0; i < out.size(); i += 4) {
-      const double kq = std::round(cov[i / 4] * 255.0), cq = with_clip ? std::round(clip[i / 4] * 255.0) : 255;
+      const double kq = std::round(cov[i / 4] * 255.0), cq = with_clip ? clip[i / 4] : 255;
       double s[4];
       for (std::size_t c = 0; c < 4; ++c) s[c] = std::round(src[i + c] * kq / 255);
       for (std::size_t c = 0; c < 4; ++c) {
         const double r = std::round(s[c] + dst[i + c] * (255 - s[3]) / 255);
         const double expect = std::round((dst[i + c] * (255 - cq) + r * cq) / 255);
         ASSERT_EQ(out[i + c], expect) << "pixel " << i / 4 << " channel " << c << (with_clip ? " clipped" : "");
+      }
+    }
+  }
+}
+
+// The 8-bit source-over loops run their first pixels apart until the destination is 32-byte aligned: every start
+// offset and length must give what one-pixel calls give (every loop variant: constant / row source, with and
+// without coverage and clip, opaque store).
+TEST(Composite8, SourceOverIsTheSameAtEveryAlignment) {
+  std::mt19937 rng(5);
+  std::vector<std::uint8_t> src(64 * 4), base(80 * 4);
+  std::vector<float> cov(64);
+  std::vector<std::uint8_t> clip(64);
+  for (auto& v : base) v = static_cast<std::uint8_t>(rng());
+  for (std::size_t i = 0; i < 64; ++i) {
+    random_pixel(rng, &src[i * 4]);
+    cov[i] = static_cast<float>(rng() % 256) / 255.f;
+    clip[i] = static_cast<std::uint8_t>(rng());
+  }
+  const std::uint8_t opaque[4] = {10, 20, 30, 255};
+  for (int offset = 0; offset < 9; ++offset) {
+    for (int n = 0; n <= 40; ++n) {
+      for (int variant = 0; variant < 5; ++variant) {
+        std::vector<std::uint8_t> whole = base, single = base;
+        auto run = [&](std::uint8_t* dst, int first, int count) {
+          const float* c = variant >= 1 && variant <= 2 ? cov.data() + first : nullptr;
+          const std::uint8_t* k = variant == 2 || variant == 3 ? clip.data() + first : nullptr;
+          if (variant == 4) {  // opaque pixels one by one (the store is checked against this)
+            for (int i = 0; i < count; ++i) blend_row_alpha(CompositeOp::SourceOver, dst + 4 * i, opaque, 1.f, nullptr, 1);
+          } else if (variant == 0) {
+            blend_row_alpha(CompositeOp::SourceOver, dst, src.data() + 4 * first, 0.7f, nullptr, count);
+          } else {
+            blend_row(CompositeOp::SourceOver, dst, src.data() + 4 * first, c, k, count);
+          }
+        };
+        if (variant == 4) {
+          // The compositor's store: one colour, full coverage, opaque.
+          Compositor<std::uint8_t> comp;
+          ImageView<std::uint8_t> view{whole.data() + 4 * offset, 0, 0, n, 1, 4 * 64};
+          comp.set(view, Paint::solid({10 / 255.f, 20 / 255.f, 30 / 255.f, 1}), Affine{}, CompositeOp::SourceOver);
+          if (n > 0) comp.span(0, 0, n, 1.f);
+        } else {
+          run(whole.data() + 4 * offset, 0, n);
+        }
+        for (int i = 0; i < n; ++i) run(single.data() + 4 * (offset + i), i, 1);
+        ASSERT_EQ(whole, single) << "offset " << offset << " n " << n << " variant " << variant;
       }
     }
   }
@@ -379,10 +429,11 @@ void check_solid_compositor() {
       // Row 52: a span; row 55: a row with varied coverage and a clip; other rows untouched.
       comp.span(52, 103, 115, 0.6f);
       comp.span(53, 100, 124, 1.f);
-      std::vector<float> cov(24), clip(24);
+      std::vector<float> cov(24);
+      std::vector<T> clip(24);  // levels
       for (int i = 0; i < 24; ++i) {
         cov[static_cast<std::size_t>(i)] = static_cast<float>(i % 6) / 5.f;
-        clip[static_cast<std::size_t>(i)] = static_cast<float>((i * 7) % 11) / 10.f;
+        clip[static_cast<std::size_t>(i)] = static_cast<T>(std::round((i * 7) % 11 / 10.0 * Target<T>::kM));
       }
       comp.row(55, 100, 124, cov.data(), clip.data());
       const double a = std::clamp(static_cast<double>(color.a), 0.0, 1.0);
@@ -396,7 +447,7 @@ void check_solid_compositor() {
           bool touched = false;
           if (y == 52 && x >= 103 && x < 115) coverage = 0.6, touched = true;
           if (y == 53) coverage = 1, touched = true;
-          if (y == 55) coverage = cov[static_cast<std::size_t>(x - 100)], clipv = clip[static_cast<std::size_t>(x - 100)], touched = true;
+          if (y == 55) coverage = cov[static_cast<std::size_t>(x - 100)], clipv = clip[static_cast<std::size_t>(x - 100)] / Target<T>::kM, touched = true;
           Rgba expect = to_unit(&before[i]);
           if (touched) expect = test::reference_draw(op, s, expect, coverage * 0.8, clipv);
           for (std::size_t c = 0; c < 4; ++c) {
@@ -487,8 +538,9 @@ TEST(Compositor, ClippedSpansEqualClippedRows) {
     Paint paint = Paint::linear({100, 0}, {124, 0});
     paint.add_stop(0, {1, 0, 0, 0.8f});
     paint.add_stop(1, {0, 0, 1, 1});
-    std::vector<float> clip(24), cov(24, 0.7f), ones(24, 1.f);
-    for (int i = 0; i < 24; ++i) clip[static_cast<std::size_t>(i)] = static_cast<float>((i * 5) % 9) / 8.f;
+    std::vector<float> cov(24, 0.7f), ones(24, 1.f);
+    std::vector<std::uint8_t> clip(24);  // levels
+    for (int i = 0; i < 24; ++i) clip[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>((i * 5) % 9 * 255 / 8);
     Compositor<std::uint8_t> comp;
     comp.set(a.view, paint, Affine{}, op, 0.9f);
     comp.span(54, 100, 124, 0.7f, clip.data());

@@ -9,6 +9,7 @@
 #include <new>
 
 #include "vraster/blur.hpp"
+#include "vraster/canvas.hpp"
 #include "vraster/composite.hpp"
 
 namespace {
@@ -55,7 +56,8 @@ TEST(Compositor, SteadyStateDrawingAllocatesNothing) {
   Paint pattern = Paint::pattern(tile);
   Paint dithered = linear;
   dithered.set_dither(true);
-  std::vector<float> coverage(96, 0.5f), clip(96, 0.75f);
+  std::vector<float> coverage(96, 0.5f);
+  std::vector<std::uint8_t> clip(96, 191);  // levels: 0.75 of 255
   Compositor<std::uint8_t> comp;
   GaussianBlur blur;
   auto round = [&] {
@@ -78,6 +80,44 @@ TEST(Compositor, SteadyStateDrawingAllocatesNothing) {
   round();
   round();
   EXPECT_EQ(g_allocations.load() - before, 0);
+}
+
+// The canvas's clips: a pixel-aligned rectangle costs no mask (the same rectangle half a pixel off, which flattens to
+// the same buffers, allocates the mask's three blocks: the object, its levels, its row extents), and save / clip /
+// fill / restore reuses the mask it made before (steady state: no allocation more than an unclipped draw).
+TEST(Canvas, PixelAlignedClipMakesNoMaskAndMasksAreReused) {
+  Path circle, aligned, unaligned, shape;
+  circle.add_circle({40, 30}, 25);
+  aligned.add_rect({10, 5, 70, 50});
+  unaligned.add_rect({10.5, 5, 70, 50});
+  shape.add_ellipse({45, 35}, 30, 20);
+  auto first_round_and_steady = [&](const Path* clip) {
+    Image image(96, 64);
+    Canvas c(image);
+    c.set_fill_color({0.2f, 0.5f, 0.8f, 0.8f});
+    auto round = [&] {
+      c.save();
+      if (clip) c.clip(*clip, FillRule::NonZero);
+      c.fill(shape);
+      c.restore();
+    };
+    const long start = g_allocations.load();
+    round();
+    const long first = g_allocations.load() - start;
+    round();
+    const long before = g_allocations.load();
+    round();
+    round();
+    return std::pair<long, long>{first, g_allocations.load() - before};
+  };
+  const auto none = first_round_and_steady(nullptr);
+  const auto rect = first_round_and_steady(&aligned);
+  const auto off = first_round_and_steady(&unaligned);
+  const auto mask = first_round_and_steady(&circle);
+  EXPECT_GE(off.first - rect.first, 3) << "a pixel-aligned rectangle clip allocated a mask";
+  EXPECT_EQ(rect.second, none.second);
+  EXPECT_EQ(off.second, none.second) << "the clip mask is made anew each round";
+  EXPECT_EQ(mask.second, none.second) << "the clip mask is made anew each round";
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <string_view>
+#include <type_traits>
 
 #include "vraster/geometry.hpp"
 #include "vraster/image.hpp"
@@ -39,15 +40,18 @@ std::string_view to_string(CompositeOp op);
 bool is_bounded(CompositeOp op);
 
 /// Composites `count` premultiplied source pixels `src` (same channel type as the destination) onto `dst` with
-/// `op`. `coverage` (may be null: all 1) scales each source pixel first; `clip` (may be null: all 1) then lerps
-/// between the old and the new destination. 8 bits: rounded as documented in docs/design.md; 16 bits: 16-bit
-/// arithmetic throughout.
+/// `op`. `coverage` (may be null: all 1) scales each source pixel first; `clip` (may be null: all full) then lerps
+/// between the old and the new destination. Clip values are levels of the channel type, 0 .. 255 (8 bits) or
+/// 0 .. 65535 (16 bits), i.e. round(max * clip coverage): a clip mask is stored so (1 or 2 bytes a pixel, not a
+/// float) and used as is. 8 bits: rounded as documented in docs/design.md; 16 bits: 16-bit arithmetic throughout.
 template <class T>
-void blend_row(CompositeOp op, T* dst, const T* src, const float* coverage, const float* clip, int count);
+void blend_row(CompositeOp op, T* dst, const T* src, const float* coverage, const std::type_identity_t<T>* clip,
+               int count);
 
 /// As blend_row with every coverage value equal to `alpha` (a layer's opacity): no coverage row needed.
 template <class T>
-void blend_row_alpha(CompositeOp op, T* dst, const T* src, float alpha, const float* clip, int count);
+void blend_row_alpha(CompositeOp op, T* dst, const T* src, float alpha, const std::type_identity_t<T>* clip,
+                     int count);
 
 /// A CoverageSink that paints with a Paint and an operator onto an ImageView. Coverage scales the source (the
 /// HTML canvas model: the shape is an image whose alpha is its coverage); for bounded operators this equals
@@ -72,11 +76,12 @@ class Compositor final : public CoverageSink {
 
   void span(int y, int x0, int x1, float coverage) override;
   void row(int y, int x0, int x1, const float* coverage) override;
-  /// As row(), then lerps by `clip` (may be null). For unbounded operators the caller covers the whole clip region
-  /// row by row, with coverage 0 where the shape is absent. `coverage` may be null here: coverage 1 everywhere.
-  void row(int y, int x0, int x1, const float* coverage, const float* clip);
-  /// As span(), then lerps by `clip` (may be null): a run of constant coverage through a clip mask's row.
-  void span(int y, int x0, int x1, float coverage, const float* clip);
+  /// As row(), then lerps by `clip` (may be null; levels as in blend_row). For unbounded operators the caller covers
+  /// the whole clip region row by row, with coverage 0 where the shape is absent. `coverage` may be null here:
+  /// coverage 1 everywhere.
+  void row(int y, int x0, int x1, const float* coverage, const T* clip);
+  /// As span(), then lerps by `clip` (may be null; levels): a run of constant coverage through a clip mask's row.
+  void span(int y, int x0, int x1, float coverage, const T* clip);
 
   /// True when nothing the current draw call could do changes a pixel (invisible paint or zero alpha with a
   /// bounded operator): callers skip rasterization altogether.

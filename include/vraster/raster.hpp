@@ -135,6 +135,11 @@ class Rasterizer {
   /// the fuzzer use that to compare both paths).
   void set_exact_shortcut(bool on);
 
+  /// A path that is one axis-aligned rectangle after its transform (any fill rule and anti-aliasing mode) skips the
+  /// sweep: the rows inside it reach the sink as one full-coverage span each, only its border pixels as rows, with
+  /// the coverage the sweep gives (the same arithmetic). false sends rectangles through the sweep (tests compare).
+  void set_rect_shortcut(bool on);
+
   /// Work budget of AntiAlias::Exact (and of NonExterior, which resolves the same arrangement): a fill whose
   /// edges cross more than this many times inside pixel rows is drawn with AntiAlias::Analytic instead (and
   /// NonExterior as NonZero), and counted in exact_fallbacks() so that callers can warn.

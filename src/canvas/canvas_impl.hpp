@@ -31,13 +31,31 @@ struct IntRect {
   static IntRect covering(const Rect& r);
 };
 
-/// A clip's coverage in [0, 1], one float per pixel of `box`.
+/// A clip's coverage over `box`, quantized to the canvas's channel type once, when the clip is made: levels 0 .. 255
+/// on 8-bit canvases (one byte a pixel, as Cairo and pixman keep clips), 0 .. 65535 on 16-bit ones (as precise as
+/// their compositing). The compositor quantized the clip to exactly these levels anyway; storing them saves 3/4 of
+/// the traffic of a float mask and the conversion per pixel. Per row it also keeps the pixels that are not 0 and
+/// one run that is full: drawing skips the rest and composites that run without the clip lerp.
 struct ClipMask {
+  struct RowExtent {
+    int x0 = 0, x1 = 0;        ///< device x of the pixels not 0: [x0, x1)
+    int full0 = 0, full1 = 0;  ///< the longest run of full coverage: [full0, full1)
+  };
   IntRect box;
-  std::vector<float> coverage;
-  const float* at(int x, int y) const {
-    return coverage.data() + static_cast<std::size_t>(y - box.y0) * box.width() + (x - box.x0);
+  std::vector<std::uint8_t> levels8;    // 8-bit canvases
+  std::vector<std::uint16_t> levels16;  // 16-bit canvases
+  std::vector<RowExtent> rows;
+
+  template <class T>
+  const T* at(int x, int y) const {
+    const std::size_t i = static_cast<std::size_t>(y - box.y0) * box.width() + (x - box.x0);
+    if constexpr (sizeof(T) == 1) {
+      return levels8.data() + i;
+    } else {
+      return levels16.data() + i;
+    }
   }
+  const RowExtent& extent(int y) const { return rows[static_cast<std::size_t>(y - box.y0)]; }
 };
 
 /// The clip: pixels outside `box` are clipped away; inside it, `mask` (when set) multiplies coverage. A clip that
@@ -110,7 +128,7 @@ struct Canvas::Impl {
   Polylines lines;                      // clip and hit-test flattening
   canvas_detail::ArcPoints arc;         // arc points before they join the path
   std::vector<float> row_coverage;      // ClipSink: one row of the clip region
-  std::vector<float> span_coverage;     // ClipSink: a constant span expanded for the clip mask
+  std::shared_ptr<canvas_detail::ClipMask> spare_mask;  // the last clip mask made: reused once no state holds it
   std::vector<float> mask_row;          // fill_mask: one row of the mask as floats
   std::vector<float> plane;             // shadow alpha / blur
   std::vector<float> plane_scratch;
@@ -140,6 +158,8 @@ struct Canvas::Impl {
   void fill_path(const Path& path, const Affine& to_device, FillRule rule, const Paint& paint);
   void stroke_user_path(const Path& user_path, const Affine& to_device);
   void clip_path(const Path& path, const Affine& to_device, FillRule rule);
+  template <class T>
+  IntRect make_clip_mask(canvas_detail::ClipMask& mask, const IntRect& area, FillRule rule);
   void begin_layer(const LayerOptions& options);
   void end_layer(bool composite = true);  ///< false: the layer is dropped without a trace
   void draw_image(const Image& image, Rect src, Rect dst);

@@ -7,6 +7,8 @@
 
 #include "canvas/canvas_impl.hpp"
 #include "canvas/shadow_blur.hpp"
+#include "paint/blend.hpp"
+#include "raster/rect.hpp"
 #include "vraster/error.hpp"
 
 namespace vraster {
@@ -23,14 +25,14 @@ namespace {
 // Receives coverage relative to `region` (a rectangle inside the clip box), offsets it to device pixels, and hands
 // it to the compositor with the clip mask's row. For unbounded operators it covers every row and pixel of the
 // region (coverage 0 where the shape is absent), so the operator reaches the whole clip region as the canvas says.
+// Where the mask is 0 nothing is composited (a clip of 0 keeps the destination, whatever the operator); where it
+// is full the compositor gets no clip (a store or a plain blend instead of the lerp).
 template <class T>
 class ClipSink final : public CoverageSink {
  public:
-  ClipSink(Compositor<T>& out, const ClipMask* mask, const IntRect& region, bool unbounded, std::vector<float>& row,
-           std::vector<float>& span)
-      : out_(out), mask_(mask), region_(region), unbounded_(unbounded), row_(row), span_(span) {
+  ClipSink(Compositor<T>& out, const ClipMask* mask, const IntRect& region, bool unbounded, std::vector<float>& row)
+      : out_(out), mask_(mask), region_(region), unbounded_(unbounded), row_(row) {
     if (unbounded_) row_.assign(static_cast<std::size_t>(region_.width()), 0.f);
-    if (mask_) span_.resize(static_cast<std::size_t>(region_.width()));
   }
 
   void span(int y, int x0, int x1, float coverage) override {
@@ -39,13 +41,9 @@ class ClipSink final : public CoverageSink {
       std::fill(row_.begin() + x0, row_.begin() + x1, coverage);
       return;
     }
-    const int dy = y + region_.y0, dx0 = x0 + region_.x0, dx1 = x1 + region_.x0;
-    if (!mask_) {
-      out_.span(dy, dx0, dx1, coverage);
-      return;
-    }
-    std::fill(span_.begin(), span_.begin() + (x1 - x0), coverage);
-    out_.row(dy, dx0, dx1, span_.data(), mask_->at(dx0, dy));
+    const int dy = y + region_.y0;
+    through_mask(dy, x0 + region_.x0, x1 + region_.x0,
+                 [&](int a, int b, const T* clip) { out_.span(dy, a, b, coverage, clip); });
   }
 
   void row(int y, int x0, int x1, const float* coverage) override {
@@ -54,8 +52,9 @@ class ClipSink final : public CoverageSink {
       std::copy(coverage, coverage + (x1 - x0), row_.begin() + x0);
       return;
     }
-    const int dy = y + region_.y0, dx0 = x0 + region_.x0, dx1 = x1 + region_.x0;
-    out_.row(dy, dx0, dx1, coverage, mask_ ? mask_->at(dx0, dy) : nullptr);
+    const int dy = y + region_.y0, dx0 = x0 + region_.x0;
+    through_mask(dy, dx0, x1 + region_.x0,
+                 [&](int a, int b, const T* clip) { out_.row(dy, a, b, coverage + (a - dx0), clip); });
   }
 
   /// Unbounded operators: composites the rows not reached yet (with coverage 0 where nothing was drawn).
@@ -64,11 +63,27 @@ class ClipSink final : public CoverageSink {
   }
 
  private:
+  // Device pixels [x0, x1) of row dy in up to three pieces f(a, b, clip): none where the mask is 0, clip null where
+  // it is full, the mask's row elsewhere.
+  template <class F>
+  void through_mask(int dy, int x0, int x1, F&& f) {
+    if (!mask_) return f(x0, x1, nullptr);
+    const ClipMask::RowExtent& e = mask_->extent(dy);
+    const int a = std::max(x0, e.x0), b = std::min(x1, e.x1);
+    if (a >= b) return;
+    const int f0 = std::clamp(e.full0, a, b), f1 = std::clamp(e.full1, f0, b);
+    if (f0 > a) f(a, f0, mask_->at<T>(a, dy));
+    if (f1 > f0) f(f0, f1, nullptr);
+    if (b > f1) f(f1, b, mask_->at<T>(f1, dy));
+  }
+
   // Flushes every row before `y` (the one being collected, then empty ones) and starts collecting row y.
   void move_to_row(int y) {
     while (next_ < y) {
       const int dy = next_ + region_.y0;
-      out_.row(dy, region_.x0, region_.x1, row_.data(), mask_ ? mask_->at(region_.x0, dy) : nullptr);
+      through_mask(dy, region_.x0, region_.x1, [&](int a, int b, const T* clip) {
+        out_.row(dy, a, b, row_.data() + (a - region_.x0), clip);
+      });
       if (started_) {
         std::fill(row_.begin(), row_.end(), 0.f);
         started_ = false;
@@ -83,7 +98,6 @@ class ClipSink final : public CoverageSink {
   IntRect region_;
   bool unbounded_;
   std::vector<float>& row_;
-  std::vector<float>& span_;
   int next_ = 0;         // unbounded: first row not yet composited
   bool started_ = false;  // unbounded: row_ holds coverage of row next_
 };
@@ -169,23 +183,43 @@ class PlaneSource final : public CoverageSource {
   IntRect box_;
 };
 
-// Writes coverage into a zeroed float plane (a clip mask in the making).
-class PlaneSink final : public CoverageSink {
+// Writes coverage into a zeroed plane of levels (a clip mask in the making), quantized as the compositor would, and
+// notes each row's extents (relative to the plane) from the calls themselves: the pixels not 0 lie in the span of
+// the calls, the longest full span is the full run (rows from the sweep are the borders; a full run inside one is
+// only missed, never wrong).
+template <class T>
+class LevelSink final : public CoverageSink {
  public:
-  PlaneSink(std::vector<float>& plane, int width) : plane_(plane), width_(width) {}
+  using Extent = ClipMask::RowExtent;
+  LevelSink(T* plane, int width, Extent* rows) : plane_(plane), width_(width), rows_(rows) {}
   void span(int y, int x0, int x1, float coverage) override {
-    float* row = plane_.data() + static_cast<std::size_t>(y) * width_;
-    std::fill(row + x0, row + x1, coverage);
+    const auto q = static_cast<T>(detail::ChannelMath<T>::quantize(coverage));
+    if (q == 0) return;
+    T* row = plane_ + static_cast<std::size_t>(y) * width_;
+    std::fill(row + x0, row + x1, q);
+    Extent& e = extend(y, x0, x1);
+    if (q == detail::ChannelMath<T>::M && x1 - x0 > e.full1 - e.full0) {
+      e.full0 = x0;
+      e.full1 = x1;
+    }
   }
   void row(int y, int x0, int x1, const float* coverage) override {
-    std::copy(coverage, coverage + (x1 - x0), plane_.data() + static_cast<std::size_t>(y) * width_ + x0);
+    T* row = plane_ + static_cast<std::size_t>(y) * width_;
+    for (int x = x0; x < x1; ++x) row[x] = static_cast<T>(detail::ChannelMath<T>::quantize(coverage[x - x0]));
+    extend(y, x0, x1);
   }
 
  private:
-  std::vector<float>& plane_;
+  Extent& extend(int y, int x0, int x1) {
+    Extent& e = rows_[y];
+    if (e.x1 <= e.x0) e.x0 = x0;  // the first call of the row (calls come in increasing x)
+    e.x1 = x1;
+    return e;
+  }
+  T* plane_;
   int width_;
+  Extent* rows_;
 };
-
 
 template <class T>
 std::vector<T>& layer_pixels(canvas_detail::Layer& layer) {
@@ -245,7 +279,7 @@ void Canvas::Impl::draw_typed(CoverageSource& shape, const Paint& paint, const A
       const ImageView<T> view{pixels.data(), box.x0, box.y0, box.width(), box.height(),
                               static_cast<std::ptrdiff_t>(box.width()) * 4};
       compositor.set(view, paint, Affine::translate(offset.x, offset.y) * paint_to_device, CompositeOp::SourceOver, 1);
-      ClipSink<T> direct(compositor, nullptr, box, false, s.row_coverage, s.span_coverage);
+      ClipSink<T> direct(compositor, nullptr, box, false, s.row_coverage);
       shape.produce(box, offset, direct);
       s.plane.resize(static_cast<std::size_t>(box.width()) * box.height());
       const float scale = 1.f / static_cast<float>(BasicImage<T>::kMax);
@@ -256,7 +290,7 @@ void Canvas::Impl::draw_typed(CoverageSource& shape, const Paint& paint, const A
       if (!compositor.draws_nothing()) {
         const IntRect area = unbounded ? region : region.intersect(box);
         if (!area.empty()) {
-          ClipSink<T> sink(compositor, st.clip.mask.get(), area, unbounded, s.row_coverage, s.span_coverage);
+          ClipSink<T> sink(compositor, st.clip.mask.get(), area, unbounded, s.row_coverage);
           blurred.produce(area, {}, sink);
           sink.finish();
         }
@@ -269,7 +303,7 @@ void Canvas::Impl::draw_typed(CoverageSource& shape, const Paint& paint, const A
   // Bounded operators touch only the shape: rasterize only where it and the clip meet.
   const IntRect area = unbounded ? region : region.intersect(shape.bounds());
   if (area.empty()) return;
-  ClipSink<T> sink(compositor, st.clip.mask.get(), area, unbounded, s.row_coverage, s.span_coverage);
+  ClipSink<T> sink(compositor, st.clip.mask.get(), area, unbounded, s.row_coverage);
   shape.produce(area, {}, sink);
   sink.finish();
 }
@@ -325,39 +359,14 @@ void Canvas::Impl::stroke_user_path(const Path& user_path, const Affine& to_devi
 namespace {
 
 // Whether `lines` is one axis-aligned rectangle with whole-pixel corners. Sets `box` and the winding number of
-// its inside (+1 counterclockwise on screen).
+// its inside.
 bool pixel_aligned_rectangle(const Polylines& lines, IntRect& box, int& winding) {
-  std::size_t contour = lines.contour_count();
-  const std::span<const Point> pts = contour == 1 ? lines.contour(0) : std::span<const Point>{};
-  if (pts.empty()) return false;
-  Point corner[5];
-  int n = 0;
-  for (const Point& p : pts) {
-    if (n > 0 && p == corner[n - 1]) continue;
-    if (n == 5) return false;
-    corner[n++] = p;
+  Rect r;
+  if (!detail::axis_aligned_rectangle(lines, r, winding)) return false;
+  for (const double v : {r.x0, r.y0, r.x1, r.y1}) {
+    if (v != std::round(v) || std::abs(v) > 1e9) return false;
   }
-  if (n == 5 && corner[4] == corner[0]) n = 4;
-  if (n != 4) return false;
-  for (int i = 0; i < 4; ++i) {
-    const Point a = corner[i], b = corner[(i + 1) % 4];
-    if (a.x != b.x && a.y != b.y) return false;  // not axis-aligned
-    if (a.x != std::round(a.x) || a.y != std::round(a.y) || std::abs(a.x) > 1e9 || std::abs(a.y) > 1e9) return false;
-  }
-  // Alternating horizontal and vertical sides.
-  const bool first_horizontal = corner[0].y == corner[1].y;
-  for (int i = 0; i < 4; ++i) {
-    const bool horizontal = corner[i].y == corner[(i + 1) % 4].y;
-    if (horizontal != (first_horizontal == (i % 2 == 0))) return false;
-  }
-  double area2 = 0;
-  for (int i = 0; i < 4; ++i) area2 += cross(corner[i], corner[(i + 1) % 4]);
-  if (area2 == 0) return false;
-  Rect r = Rect::from_point(corner[0]);
-  for (int i = 1; i < 4; ++i) r.include(corner[i]);
   box = {static_cast<int>(r.x0), static_cast<int>(r.y0), static_cast<int>(r.x1), static_cast<int>(r.y1)};
-  // y points down: a positive shoelace sum is clockwise on screen, whose inside winds -1.
-  winding = area2 > 0 ? -1 : 1;
   return true;
 }
 
@@ -403,34 +412,68 @@ void Canvas::Impl::clip_path(const Path& p, const Affine& to_device, FillRule ru
     clip = {};
     return;
   }
-  auto mask = std::make_shared<ClipMask>();
-  mask->box = area;
-  mask->coverage.assign(static_cast<std::size_t>(area.width()) * area.height(), 0.f);
+  // The last mask made is reused when no state holds it any more (save, clip, draw, restore allocates once).
+  std::shared_ptr<ClipMask> mask =
+      spare_mask && spare_mask.use_count() == 1 ? spare_mask : std::make_shared<ClipMask>();
+  spare_mask = mask;
   for (Point& q : lines.points) q = {q.x - area.x0, q.y - area.y0};
-  PlaneSink sink(mask->coverage, area.width());
-  renderer.rasterizer().fill(lines, rule, state.aa, area.width(), area.height(), sink);
-  // Multiply by the old mask and find the covered box.
-  IntRect covered{area.x1, area.y1, area.x0, area.y0};
-  for (int y = area.y0; y < area.y1; ++y) {
-    float* row = mask->coverage.data() + static_cast<std::size_t>(y - area.y0) * area.width();
-    const float* old = clip.mask ? clip.mask->at(area.x0, y) : nullptr;
-    for (int x = area.x0; x < area.x1; ++x) {
-      float& c = row[x - area.x0];
-      if (old) c *= old[x - area.x0];
-      if (c > 0) {
-        covered.x0 = std::min(covered.x0, x);
-        covered.x1 = std::max(covered.x1, x + 1);
-        covered.y0 = std::min(covered.y0, y);
-        covered.y1 = std::max(covered.y1, y + 1);
-      }
-    }
-  }
+  const IntRect covered =
+      is16() ? make_clip_mask<std::uint16_t>(*mask, area, rule) : make_clip_mask<std::uint8_t>(*mask, area, rule);
   if (covered.empty()) {
     clip = {};
     return;
   }
   clip.box = covered;
   clip.mask = std::move(mask);
+}
+
+// Rasterizes `lines` (relative to area's corner) into `mask` over `area` as levels, multiplied by the current clip's
+// mask (rounded once per pixel: within one level of multiplying the float coverages), with each row's extents, and
+// returns the box of the rows' extents (empty when nothing is covered).
+template <class T>
+IntRect Canvas::Impl::make_clip_mask(ClipMask& mask, const IntRect& area, FillRule rule) {
+  using CM = detail::ChannelMath<T>;
+  using W = typename CM::Wide;
+  std::vector<T>& levels = [&]() -> std::vector<T>& {
+    if constexpr (sizeof(T) == 1) {
+      return mask.levels8;
+    } else {
+      return mask.levels16;
+    }
+  }();
+  const ClipMask* old = state.clip.mask.get();
+  mask.box = area;
+  levels.assign(static_cast<std::size_t>(area.width()) * area.height(), T{0});
+  mask.rows.assign(static_cast<std::size_t>(area.height()), ClipMask::RowExtent{});
+  LevelSink<T> sink(levels.data(), area.width(), mask.rows.data());
+  renderer.rasterizer().fill(lines, rule, state.aa, area.width(), area.height(), sink);
+  IntRect covered{area.x1, area.y1, area.x0, area.y0};
+  for (int y = area.y0; y < area.y1; ++y) {
+    ClipMask::RowExtent& e = mask.rows[static_cast<std::size_t>(y - area.y0)];
+    if (e.x1 <= e.x0) {
+      e = {};
+      continue;
+    }
+    // To device x; then, through the old clip, the product (0 outside the old row's extent, full where both are).
+    e = {e.x0 + area.x0, e.x1 + area.x0, e.full0 + area.x0, e.full1 + area.x0};
+    if (old) {
+      const ClipMask::RowExtent& o = old->extent(y);
+      T* row = levels.data() + static_cast<std::size_t>(y - area.y0) * area.width() - area.x0;
+      const T* prev = old->at<T>(area.x0, y) - area.x0;
+      const int a = std::max(e.x0, o.x0), b = std::min(e.x1, o.x1);
+      std::fill(row + e.x0, row + std::clamp(a, e.x0, e.x1), T{0});
+      for (int x = a; x < b; ++x) row[x] = static_cast<T>(CM::div(W{row[x]} * W{prev[x]}));
+      std::fill(row + std::clamp(b, e.x0, e.x1), row + e.x1, T{0});
+      const int f0 = std::max(e.full0, o.full0), f1 = std::min(e.full1, o.full1);
+      e = b > a ? ClipMask::RowExtent{a, b, f0 < f1 ? f0 : 0, f0 < f1 ? f1 : 0} : ClipMask::RowExtent{};
+      if (b <= a) continue;
+    }
+    covered.x0 = std::min(covered.x0, e.x0);
+    covered.x1 = std::max(covered.x1, e.x1);
+    covered.y0 = std::min(covered.y0, y);
+    covered.y1 = y + 1;
+  }
+  return covered;
 }
 
 // ---- layers ----
@@ -519,7 +562,7 @@ void Canvas::Impl::composite_layer(canvas_detail::Layer& layer) {
       }
       cov = coverage.data();
     }
-    const float* clip = st.clip.mask ? st.clip.mask->at(area.x0, y) : nullptr;
+    const T* clip = st.clip.mask ? st.clip.mask->at<T>(area.x0, y) : nullptr;
     blend_row(opt.op, dst.pixel(area.x0, y), src, cov, clip, area.width());
   }
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "blend.hpp"
 #include "vraster/renderer.hpp"
 
 namespace vraster {
@@ -82,7 +83,7 @@ void SolidCompositor<T>::span8(int y, int x0, int x1, float coverage) {
   auto* px = reinterpret_cast<std::uint32_t*>(static_cast<void*>(image_.pixel(x0, y)));
   const int n = x1 - x0;
   if (cov == 255 && premul_[3] == 255) {  // opaque: store, no blending
-    std::fill(px, px + n, color);
+    detail::store8(px, n, color);
     return;
   }
   blend_span8(px, n, cov == 255 ? color : scale8(color, cov));

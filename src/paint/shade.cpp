@@ -383,6 +383,8 @@ struct FixedAxis {
 // recomputed exactly from doubles every 64 pixels (so the rounded step never drifts); weights with 12 bits: the
 // horizontal lerp of two texels is at most 255 x 4096, the vertical one at most 255 x 4096^2 + 2^23 < 2^32, rounded
 // once. The weights' rounding moves a sample by at most 1/8192 of a texel (a 16th of a level on the sharpest edge).
+// Two passes per 64 pixels: the position walk gathers the four texels and the weights of each pixel (scalar: wrapping
+// and the loads depend on the position), then bilinear8_run does the arithmetic for all of them (vectorised).
 template <Extend EX, Extend EY>
 void sample_bilinear8(const Image& tile, FixedAxis ax, FixedAxis ay, std::uint32_t opacity, Point start, Point step,
                       int n, std::uint32_t* dst) {
@@ -391,36 +393,35 @@ void sample_bilinear8(const Image& tile, FixedAxis ax, FixedAxis ay, std::uint32
     v = v > -kFar ? (v < kFar ? v : kFar) : -kFar;
     return static_cast<std::int64_t>(std::floor(v * kOne + 0.5));
   };
-  static constexpr std::uint8_t kZero[4] = {0, 0, 0, 0};
+  constexpr int kChunk = 64;
+  std::uint32_t ta[kChunk], tb[kChunk], tc[kChunk], td[kChunk], wx[kChunk], wy[kChunk];
   const std::size_t stride = static_cast<std::size_t>(tile.width) * 4;
-  for (int k = 0; k < n; ++k) {
-    if ((k & 63) == 0) {
-      ax.pos = fixed(start.x - 0.5 + step.x * k);
-      ay.pos = fixed(start.y - 0.5 + step.y * k);
-      ax.wrap();
-      ay.wrap();
+  const std::uint8_t* pixels = tile.data.data();
+  auto texel = [&](int x, int y) {
+    std::uint32_t v = 0;
+    // Only extend None marks texels outside the tile (-1): the other modes always land inside.
+    const bool inside = (EX != Extend::None || x >= 0) && (EY != Extend::None || y >= 0);
+    if (inside) std::memcpy(&v, pixels + stride * static_cast<std::size_t>(y) + 4 * static_cast<std::size_t>(x), 4);
+    return v;
+  };
+  for (int k0 = 0; k0 < n; k0 += kChunk) {
+    const int m = std::min(kChunk, n - k0);
+    ax.pos = fixed(start.x - 0.5 + step.x * k0);
+    ay.pos = fixed(start.y - 0.5 + step.y * k0);
+    ax.wrap();
+    ay.wrap();
+    for (int i = 0; i < m; ++i) {
+      int x0 = -1, x1 = -1, y0 = -1, y1 = -1;
+      ax.texels<EX>(x0, x1, wx[i]);
+      ay.texels<EY>(y0, y1, wy[i]);
+      ta[i] = texel(x0, y0);
+      tb[i] = texel(x1, y0);
+      tc[i] = texel(x0, y1);
+      td[i] = texel(x1, y1);
+      ax.advance();
+      ay.advance();
     }
-    int x0 = -1, x1 = -1, y0 = -1, y1 = -1;
-    std::uint32_t fx = 0, fy = 0;
-    ax.texels<EX>(x0, x1, fx);
-    ay.texels<EY>(y0, y1, fy);
-    const std::uint8_t* r0 = y0 < 0 ? nullptr : tile.data.data() + stride * static_cast<std::size_t>(y0);
-    const std::uint8_t* r1 = y1 < 0 ? nullptr : tile.data.data() + stride * static_cast<std::size_t>(y1);
-    auto at = [&](const std::uint8_t* row, int x) { return row == nullptr || x < 0 ? kZero : row + 4 * x; };
-    const std::uint8_t *a = at(r0, x0), *b = at(r0, x1), *c = at(r1, x0), *d = at(r1, x1);
-    const std::uint32_t gx = 4096 - fx, gy = 4096 - fy;
-    std::uint32_t q[4];
-    for (int ch = 0; ch < 4; ++ch) {
-      const std::uint32_t top = a[ch] * gx + b[ch] * fx;
-      const std::uint32_t bottom = c[ch] * gx + d[ch] * fx;
-      q[ch] = (top * gy + bottom * fy + (1u << 23)) >> 24;
-    }
-    if (opacity != 65536) {
-      for (auto& x : q) x = static_cast<std::uint32_t>((std::uint64_t{x} * opacity + 32768) >> 16);
-    }
-    dst[k] = q[0] | q[1] << 8 | q[2] << 16 | q[3] << 24;
-    ax.advance();
-    ay.advance();
+    bilinear8_run(ta, tb, tc, td, wx, wy, opacity, m, dst + k0);
   }
 }
 
@@ -461,6 +462,14 @@ void sample_bilinear8(const Image& tile, Extend ex, Extend ey, float opacity, Po
 }
 
 }  // namespace
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+__attribute__((target_clones("avx2", "default")))
+#endif
+void bilinear8_run(const std::uint32_t* a, const std::uint32_t* b, const std::uint32_t* c, const std::uint32_t* d,
+                   const std::uint32_t* fx, const std::uint32_t* fy, std::uint32_t opacity, int n, std::uint32_t* dst) {
+  for (int i = 0; i < n; ++i) dst[i] = bilinear8_pixel(a[i], b[i], c[i], d[i], fx[i], fy[i], opacity);
+}
 
 template <class T>
 void Shader<T>::shade_pattern(int y, int x0, int n, T* out) {

@@ -64,6 +64,28 @@ class Shader {
   const Paint* pattern_ = nullptr;
 };
 
+/// The 8-bit bilinear sampler's arithmetic on one pixel: texels a b (top row) and c d (bottom row) as packed RGBA,
+/// weights fx, fy of the right and bottom texels in [0, 4096), opacity in 16.16 fixed point (65536: opaque).
+/// Per channel: round((a gx + b fx) gy + (c gx + d fx) fy) / 2^24) with g = 4096 - f, then round(q opacity / 2^16)
+/// (q opacity < 2^24: 32 bits suffice).
+inline std::uint32_t bilinear8_pixel(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d,
+                                     std::uint32_t fx, std::uint32_t fy, std::uint32_t opacity) {
+  const std::uint32_t gx = 4096 - fx, gy = 4096 - fy;
+  std::uint32_t out = 0;
+  for (int sh = 0; sh < 32; sh += 8) {
+    const std::uint32_t top = (a >> sh & 255u) * gx + (b >> sh & 255u) * fx;
+    const std::uint32_t bottom = (c >> sh & 255u) * gx + (d >> sh & 255u) * fx;
+    const std::uint32_t q = (top * gy + bottom * fy + (1u << 23)) >> 24;
+    out |= ((q * opacity + 32768u) >> 16) << sh;
+  }
+  return out;
+}
+
+/// bilinear8_pixel over n pixels of gathered texels and weights, vectorised (AVX2 clone picked at run time); the
+/// same integers, so the same results (tests/pattern_test.cpp compares it with bilinear8_pixel).
+void bilinear8_run(const std::uint32_t* a, const std::uint32_t* b, const std::uint32_t* c, const std::uint32_t* d,
+                   const std::uint32_t* fx, const std::uint32_t* fy, std::uint32_t opacity, int n, std::uint32_t* dst);
+
 extern template class Shader<std::uint8_t>;
 extern template class Shader<std::uint16_t>;
 

@@ -21,12 +21,15 @@ class RasterizerImpl {
   std::vector<Edge> edges_;
   std::int64_t dense_limit_ = Rasterizer::kDefaultDenseLimit;
   bool exact_shortcut_ = true;
+  bool rect_shortcut_ = true;
   std::uint64_t exact_fallbacks_ = 0;  // exact fills over the crossing budget, drawn analytic instead
 
  private:
   /// Whether edges_ (clipped) have at most Rasterizer::kMaxExactCrossings crossings inside pixel rows
   /// (exact_budget.cpp).
   bool exact_within_budget(int height);
+  /// One axis-aligned rectangle: its coverage without a sweep (rect.cpp). False when `lines` is not one.
+  bool fill_rect(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
   void build_edges(const Polylines& lines, int width, int height);
   void build_unclipped_edges(const Polylines& lines);
   void clip_pieces(int width, int height);
@@ -57,6 +60,8 @@ class RasterizerImpl {
   std::vector<std::uint64_t> touched_;       // analytic sweep: one bit per cell written in the current row
   std::vector<float> row_coverage_;          // coverage handed to the sink
   std::vector<double> dense_block_;          // small paths: rows x columns of cells, zero between fills
+  std::vector<float> rect_coverage_;         // fill_rect: the coverage of up to three rows
+  std::vector<double> rect_cells_;           // fill_rect: analytic cells of one row, zero between fills
   std::vector<float> mask_cells_;            // fill_mask: rows x stride float cells, zero between fills
   BoundarySweep boundary_;
   UnitWindingTest unit_winding_;             // exact mode: whether analytic is already exact

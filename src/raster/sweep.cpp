@@ -239,11 +239,13 @@ void Rasterizer::fill_mask(const Polylines& lines, FillRule rule, int width, int
 const std::vector<Edge>& Rasterizer::edges() const { return impl_->edges_; }
 void Rasterizer::set_dense_limit(std::int64_t cells) { impl_->dense_limit_ = cells; }
 void Rasterizer::set_exact_shortcut(bool on) { impl_->exact_shortcut_ = on; }
+void Rasterizer::set_rect_shortcut(bool on) { impl_->rect_shortcut_ = on; }
 std::uint64_t Rasterizer::exact_fallbacks() const { return impl_->exact_fallbacks_; }
 
 void detail::RasterizerImpl::fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
                                   CoverageSink& sink) {
   if (width <= 0 || height <= 0) return;
+  if (fill_rect(lines, rule, aa, width, height, sink)) return;
   if (rule == FillRule::NonExterior) {
     // Over the work budget (counted on the visible edges): non-zero, the nearest rule that needs no arrangement.
     build_edges(lines, width, height);
