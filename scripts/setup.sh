@@ -6,6 +6,7 @@ packages=(
   cmake g++ make pkg-config            # toolchain
   libfreetype-dev libharfbuzz-dev      # fonts and shaping (text/)
   libfribidi-dev                       # bidirectional text (text/)
+  libfontconfig-dev                    # system fonts for text (text/FontDb)
   libpng-dev                           # PNG output
   libpugixml-dev                       # XML parser (svg_subset/)
   libgtest-dev                         # tests

@@ -16,12 +16,14 @@
 #include "cli/cli.hpp"
 #include "cli/image_compare.hpp"
 #include "svg_subset/svg.hpp"
+#include "svg_subset/tree.hpp"
 #include "vraster/canvas.hpp"
 #include "vraster/fxaa.hpp"
 #include "vraster/files.hpp"
 #include "vraster/vraster.hpp"
 #if VRASTER_WITH_TEXT
 #include "vraster_text/cli.hpp"
+#include "vraster_text/font_db.hpp"
 #endif
 
 namespace vraster::cli {
@@ -32,6 +34,9 @@ constexpr const char* kUsage =
     "  vraster render IN.svg -o OUT.png [-w|--width W] [-h|--height H] [--quiet] [--aa MODE] [--rule RULE]\n"
     "                 [--tolerance T] [--depth 8|16] [--background COLOR|transparent] [--bench N]\n"
     "                 [--hairline bresenham|dda|wu|analytic]   (every stroke as a 1-px hairline)\n"
+    "                 [--font-dir DIR]... [--no-system-fonts] [--serif-family F] [--sans-serif-family F]\n"
+    "                 [--monospace-family F] [--cursive-family F] [--fantasy-family F] [--default-family F]\n"
+    "                 [--default-font-size PX]   (fonts for <text>: DIRs, then the system's via fontconfig)\n"
     "  vraster fill-rules IN.svg -o SHEET.png [--winding] [--aa MODE] [--panel PX]\n"
     "  vraster text \"TEXT\" -o OUT.png [--font FILE]... [--face-index N] [--size PX] [--width W]\n"
     "               [--align left|center|right] [--line-height PX] [--color C] [--background C] [--aa MODE]\n"
@@ -58,6 +63,12 @@ struct RenderArgs {
   int bench_frames = 0;
   int width = 0, height = 0;  ///< requested output size (0: from the document)
   bool quiet = false;         ///< no warnings on stderr
+  // Fonts for <text>.
+  std::vector<std::string> font_dirs;
+  bool system_fonts = true;
+  std::vector<std::pair<std::string, std::string>> generic_families;  ///< (generic name, family)
+  std::string default_family = "serif";
+  double default_font_size = 16;
   bool help = false;
 };
 
@@ -137,6 +148,22 @@ RenderArgs parse_render_args(int argc, char** argv) {
         if (!c) throw UsageError{"--background: " + quoted(v) + " is not a colour"};
         a.background = *c;
       }
+    } else if (arg == "--font-dir") {
+      a.font_dirs.emplace_back(r.value(arg));
+    } else if (arg == "--no-system-fonts") {
+      a.system_fonts = false;
+    } else if (arg == "--serif-family" || arg == "--sans-serif-family" || arg == "--monospace-family" ||
+               arg == "--cursive-family" || arg == "--fantasy-family") {
+      std::string generic(arg.substr(2));
+      generic.resize(generic.size() - 7);  // "-family"
+      a.generic_families.emplace_back(generic, std::string(r.value(arg)));
+    } else if (arg == "--default-family") {
+      a.default_family = r.value(arg);
+    } else if (arg == "--default-font-size") {
+      a.default_font_size = parse_number(arg, r.value(arg));
+      if (!(a.default_font_size > 0 && a.default_font_size <= 4096)) {
+        throw UsageError{"--default-font-size must be between 0 and 4096 pixels"};
+      }
     } else if (arg == "--bench") {
       const double n = parse_number(arg, r.value(arg));
       if (!(n >= 1 && n <= 1e6) || n != std::floor(n)) throw UsageError{"--bench needs a frame count from 1 to 1000000"};
@@ -190,7 +217,26 @@ int run_render(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
-  svg::Document doc = svg::load_svg(a.input);
+  svg::TreeOptions options;
+  options.default_font_size = a.default_font_size;
+#if VRASTER_WITH_TEXT
+  // Text uses only these fonts: the directories named, the system's (fontconfig) unless disabled, and the
+  // embedded default font as the last resort.
+  auto fonts = std::make_shared<text::FontDb>();
+  for (const std::string& dir : a.font_dirs) fonts->add_directory(dir);
+  if (a.system_fonts) fonts->add_system_fonts();
+  fonts->add_embedded_default();
+  for (const auto& [generic, family] : a.generic_families) {
+    text::GenericFamily g;
+    if (text::parse_generic_family(generic, g)) fonts->set_generic_family(g, family);
+  }
+  fonts->set_default_family(a.default_family);
+  if (!a.quiet) {
+    for (const std::string& w : fonts->warnings()) std::cerr << "vraster: font skipped: " << printable(w, 1024) << "\n";
+  }
+  options.fonts = fonts;
+#endif
+  svg::Document doc = svg::load_svg(a.input, options);
   if (!a.quiet) {
     for (const std::string& w : doc.warnings) std::cerr << printable(a.input, 1024) << ":" << w << "\n";
   }

@@ -6,6 +6,7 @@
 #include <iterator>
 
 #include "font_impl.hpp"
+#include <hb-ot.h>
 #include FT_OUTLINE_H
 #include FT_TRUETYPE_TABLES_H
 #include FT_TRUETYPE_TAGS_H
@@ -232,6 +233,49 @@ FontMetrics Font::metrics(double size) const {
   hb_font_get_h_extents(impl_->hb, &ext);
   const double s = size / units_per_em();
   return {-ext.ascender * s, -ext.descender * s, ext.line_gap * s};
+}
+
+bool Font::has_substitution_feature(std::string_view tag) const {
+  if (tag.size() != 4) return false;
+  const hb_tag_t t = hb_tag_from_string(tag.data(), 4);
+  hb_face_t* face = hb_font_get_face(impl_->hb);
+  hb_tag_t tags[64];
+  for (unsigned start = 0;; start += 64) {
+    unsigned count = 64;
+    const unsigned total = hb_ot_layout_table_get_feature_tags(face, HB_OT_TAG_GSUB, start, &count, tags);
+    for (unsigned i = 0; i < count; ++i) {
+      if (tags[i] == t) return true;
+    }
+    if (count == 0 || start + count >= total) return false;
+  }
+}
+
+DecorationMetrics Font::decoration_metrics(double size) const {
+  check_font_size(size);
+  const double s = size / units_per_em();
+  const FT_Face face = impl_->face;
+  DecorationMetrics m;
+  m.underline_thickness = face->underline_thickness > 0 ? face->underline_thickness * s : size / 14;
+  // FreeType gives the top of the underline (post table, y up): its centre is half a thickness lower.
+  m.underline_position = face->underline_position != 0 || face->underline_thickness > 0
+                             ? -face->underline_position * s + m.underline_thickness / 2
+                             : size / 10;
+  m.strikeout_thickness = m.underline_thickness;
+  m.strikeout_position = -size * 0.3;
+  m.subscript_offset = size * 0.2;
+  m.superscript_offset = -size * 0.34;
+  m.x_height = -size * 0.5;
+  m.cap_height = -size * 0.7;
+  const auto* os2 = static_cast<const TT_OS2*>(FT_Get_Sfnt_Table(face, FT_SFNT_OS2));
+  if (os2 && os2->version != 0xFFFF) {
+    if (os2->yStrikeoutSize > 0) m.strikeout_thickness = os2->yStrikeoutSize * s;
+    if (os2->yStrikeoutPosition > 0) m.strikeout_position = -os2->yStrikeoutPosition * s + m.strikeout_thickness / 2;
+    if (os2->ySubscriptYOffset != 0) m.subscript_offset = std::abs(os2->ySubscriptYOffset) * s;
+    if (os2->ySuperscriptYOffset != 0) m.superscript_offset = -std::abs(os2->ySuperscriptYOffset) * s;
+    if (os2->version >= 2 && os2->sxHeight > 0) m.x_height = -os2->sxHeight * s;
+    if (os2->version >= 2 && os2->sCapHeight > 0) m.cap_height = -os2->sCapHeight * s;
+  }
+  return m;
 }
 
 double Font::advance(std::uint32_t glyph, double size) const {

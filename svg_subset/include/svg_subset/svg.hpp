@@ -96,6 +96,7 @@ std::pair<int, int> output_size(const Document& doc, int width, int height);
 void scale_to(Document& doc, int width, int height);
 
 struct Tree;
+struct TreeOptions;
 
 /// Flattens a resolved tree (tree.hpp) into draw items for the core Renderer: what it cannot draw yet
 /// (gradients, patterns, clip paths, masks, blend modes) is left out with a warning.
@@ -105,8 +106,11 @@ Document to_document(const Tree& tree);
 /// for a document that cannot be used at all (malformed XML, no <svg> root, a size that cannot be resolved or
 /// is out of range, a limit exceeded); invalid values are ignored with a warning, as browsers do.
 Document parse_svg(std::string_view text, const std::string& file = "<memory>");
+/// The same with options (fonts for text: tree.hpp).
+Document parse_svg(std::string_view text, const std::string& file, const TreeOptions& options);
 /// Reads and parses a file (throws vraster::Error when it cannot be read).
 Document load_svg(const std::string& path);
+Document load_svg(const std::string& path, const TreeOptions& options);
 
 /// Render settings shared by every item (a rule given here overrides the file's fill-rule).
 struct RenderSettings {

@@ -18,6 +18,10 @@
 #include "vraster/raster.hpp"
 #include "vraster/stroke.hpp"
 
+namespace vraster::text {
+class FontDb;  // vraster_text/font_db.hpp
+}
+
 namespace vraster::svg {
 
 /// Which coordinates a paint server, clip path or mask is given in.
@@ -159,9 +163,17 @@ struct Tree {
   std::string file;
 };
 
+/// How a document is read.
+struct TreeOptions {
+  /// The fonts text may use; a document reads no font file from anywhere else. Null: the embedded default font
+  /// (Noto Sans) alone.
+  std::shared_ptr<text::FontDb> fonts;
+  double default_font_size = 16;  ///< the root's font-size in px (CSS "medium")
+};
+
 /// Parses SVG text into the resolved tree. Throws ParseError (svg.hpp) only for a document that cannot be used
 /// at all: malformed XML, no <svg> root, a size that cannot be resolved or is out of range, a reference loop,
 /// a limit exceeded. Invalid values are treated as not given, with a warning.
-Tree parse_svg_tree(std::string_view text, const std::string& file = "<memory>");
+Tree parse_svg_tree(std::string_view text, const std::string& file = "<memory>", const TreeOptions& options = {});
 
 }  // namespace vraster::svg

@@ -6,6 +6,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vraster/geometry.hpp"
@@ -32,6 +33,20 @@ struct FontMetrics {
   double descender = 0;   ///< baseline to the bottom (positive: below)
   double line_gap = 0;    ///< extra space between lines
   double line_height() const { return descender - ascender + line_gap; }
+};
+
+/// Positions for text decorations and baselines at one size, in pixels, y down (negative: above the baseline).
+/// Each comes from the font's tables when it has them (post: underline; OS/2: strikeout, sub- and superscript,
+/// x-height, cap height), otherwise from a usual proportion of the em.
+struct DecorationMetrics {
+  double underline_position = 0;   ///< centre of the underline (positive: below the baseline)
+  double underline_thickness = 0;
+  double strikeout_position = 0;   ///< centre of the line-through (negative)
+  double strikeout_thickness = 0;
+  double subscript_offset = 0;     ///< how far a subscript's baseline drops (positive: down)
+  double superscript_offset = 0;   ///< how far a superscript's baseline rises (negative: up)
+  double x_height = 0;             ///< top of a lowercase x (negative)
+  double cap_height = 0;           ///< top of a capital (negative)
 };
 
 /// A glyph's unhinted outline in font units (see Font::outline_units) and the box of all its points, control
@@ -77,8 +92,11 @@ class Font {
   /// The glyph for a Unicode code point, 0 (.notdef) when the font has none.
   std::uint32_t glyph_index(char32_t codepoint) const;
   bool has_glyph(char32_t codepoint) const { return glyph_index(codepoint) != 0; }
+  /// Whether the font's GSUB table has a feature with this tag ("smcp", "liga", ...).
+  bool has_substitution_feature(std::string_view tag) const;
 
   FontMetrics metrics(double size) const;
+  DecorationMetrics decoration_metrics(double size) const;
   /// Horizontal advance of a glyph at `size` pixels (unhinted).
   double advance(std::uint32_t glyph, double size) const;
 

@@ -1,0 +1,697 @@
+// SVG text -> glyph outlines as paths in the resolved tree.
+//
+//   1. collect:   walk <text> and its tspan / textPath / tref / a children: characters after white-space handling
+//                 (SVG 1.1 xml:space), each with the element it belongs to; x y dx dy rotate lists per character
+//   2. chunks:    a new text chunk at every absolute x or y and at every textPath
+//   3. shape:     each chunk split into runs of one font style, shaped by HarfBuzz (fallback fonts, bidi)
+//   4. position:  pen positions with dx / dy, letter- and word-spacing, baseline shifts; text-anchor per chunk;
+//                 along the path for textPath
+//   5. emit:      one PathNode per run of glyphs of one element (its fill and stroke), decorations as rectangles
+//                 (underline and overline below the glyphs, line-through above), paint_box = the text's box
+#include <algorithm>
+#include <cmath>
+#include <cwctype>
+#include <map>
+#include <memory>
+#include <numbers>
+
+#include "scan.hpp"
+#include "text.hpp"
+#include "vraster/error.hpp"
+#include "vraster/flatten.hpp"
+#include "vraster_text/font_db.hpp"
+#include "vraster_text/layout.hpp"
+
+namespace vraster::svg::detail {
+namespace {
+
+constexpr std::size_t kMaxChars = 1 << 20;  // characters per text element (more are dropped with a warning)
+constexpr double kMaxShapeSize = text::kMaxFontSize;
+
+struct Element {
+  SpanStyle style;
+  int parent = -1;
+  std::uint32_t begin = 0, end = 0;  // characters [begin, end)
+  int path = -1;                     // index into paths when this is (or is inside) a textPath
+};
+
+struct Char {
+  char32_t c = 0;
+  int element = 0;
+  std::optional<double> x, y, rotate;
+  double dx = 0, dy = 0;
+};
+
+struct Lists {
+  int element = 0;
+  std::vector<double> x, y, dx, dy, rotate;
+};
+
+/// A textPath's geometry flattened, with cumulative lengths for positions along it.
+struct TextPath {
+  std::vector<Point> points;
+  std::vector<double> length;  // length[i]: distance from points[0] to points[i]
+  double start_offset = 0;
+  double total() const { return length.empty() ? 0 : length.back(); }
+  /// Point and tangent angle (radians) at distance d (0 <= d <= total()).
+  std::pair<Point, double> at(double d) const {
+    const auto it = std::upper_bound(length.begin(), length.end(), d);
+    std::size_t i = it == length.begin() ? 0 : static_cast<std::size_t>(it - length.begin()) - 1;
+    if (i + 1 >= points.size()) i = points.size() - 2;
+    // Skip zero-length segments for the tangent.
+    std::size_t j = i;
+    while (j + 1 < points.size() - 1 && length[j + 1] == length[j]) ++j;
+    const Point a = points[i], b = points[i + 1];
+    const double seg = length[i + 1] - length[i];
+    const double t = seg > 0 ? std::clamp((d - length[i]) / seg, 0.0, 1.0) : 0;
+    const Point ta = points[j], tb = points[j + 1];
+    return {Point{a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t}, std::atan2(tb.y - ta.y, tb.x - ta.x)};
+  }
+};
+
+/// A glyph placed in the text's user space.
+struct Placed {
+  const text::Font* font = nullptr;
+  std::uint32_t glyph = 0;
+  double size = 0;
+  double x = 0, y = 0;          // pen position (origin on the baseline)
+  double advance = 0;
+  double rotate = 0;            // degrees
+  int element = 0;
+  std::uint32_t ch = 0;         // first character of its cluster
+  int chunk = 0;
+  bool on_path = false;
+  Affine path_transform;        // for glyphs on a path: the whole placement
+};
+
+std::vector<double> parse_number_list(std::string_view v, TextHost& host, int axis, bool plain_numbers) {
+  std::vector<double> out;
+  std::size_t pos = 0;
+  skip_wsp(v, pos);
+  while (pos < v.size() && out.size() < kMaxChars) {
+    std::size_t end = pos;
+    while (end < v.size() && !is_wsp(v[end]) && v[end] != ',') ++end;
+    const std::string_view item = v.substr(pos, end - pos);
+    double d = 0;
+    if (plain_numbers) {
+      std::size_t p = 0;
+      if (scan_number(item, p, d) != NumberScan::Ok || p != item.size()) return out;
+    } else if (!host.length(item, axis, d)) {
+      return out;
+    }
+    if (!std::isfinite(d)) return out;
+    out.push_back(d);
+    pos = end;
+    skip_comma_wsp(v, pos);
+  }
+  return out;
+}
+
+class TextBuilder {
+ public:
+  TextBuilder(TextHost& host, text::FontDb& fonts) : host_(host), fonts_(fonts) {}
+
+  void build(pugi::xml_node text, const SpanStyle& style, Group& out) {
+    elements_.push_back(Element{style, -1, 0, 0, -1});
+    read_lists(text, 0);
+    collect(text, 0, preserve_of(text, false));
+    elements_[0].end = static_cast<std::uint32_t>(chars_.size());
+    trim_trailing();
+    if (chars_.empty()) return;
+    apply_lists();
+    layout();
+    emit(out);
+  }
+
+ private:
+  // ---- 1. collect ----
+
+  static bool preserve_of(pugi::xml_node node, bool inherited) {
+    const pugi::xml_attribute a = node.attribute("xml:space");
+    if (!a) return inherited;
+    return std::string_view(a.value()) == "preserve";
+  }
+
+  void read_lists(pugi::xml_node node, int element) {
+    Lists l;
+    l.element = element;
+    if (const auto a = node.attribute("x")) l.x = parse_number_list(a.value(), host_, 0, false);
+    if (const auto a = node.attribute("y")) l.y = parse_number_list(a.value(), host_, 1, false);
+    if (const auto a = node.attribute("dx")) l.dx = parse_number_list(a.value(), host_, 0, false);
+    if (const auto a = node.attribute("dy")) l.dy = parse_number_list(a.value(), host_, 1, false);
+    if (const auto a = node.attribute("rotate")) l.rotate = parse_number_list(a.value(), host_, 2, true);
+    if (!l.x.empty() || !l.y.empty() || !l.dx.empty() || !l.dy.empty() || !l.rotate.empty())
+      lists_.push_back(std::move(l));
+  }
+
+  void add_text(std::string_view utf8, int element, bool preserve) {
+    for (char32_t c : text::decode_utf8(utf8)) {
+      if (chars_.size() >= kMaxChars) {
+        if (!warned_size_) host_.warn(text_node_, "text longer than " + std::to_string(kMaxChars) + " characters, cut");
+        warned_size_ = true;
+        return;
+      }
+      if (preserve) {
+        if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+      } else {
+        if (c == '\n' || c == '\r') continue;
+        if (c == '\t') c = ' ';
+        if (c == ' ' && last_space_) continue;
+      }
+      last_space_ = c == ' ';
+      last_collapsible_ = !preserve && c == ' ';
+      Char ch;
+      ch.c = c;
+      ch.element = element;
+      chars_.push_back(ch);
+    }
+  }
+
+  /// SVG 1.1 xml:space="default" strips the trailing space of the whole element.
+  void trim_trailing() {
+    if (!chars_.empty() && last_collapsible_ && chars_.back().c == ' ') {
+      chars_.pop_back();
+      for (Element& e : elements_) {
+        e.begin = std::min<std::uint32_t>(e.begin, static_cast<std::uint32_t>(chars_.size()));
+        e.end = std::min<std::uint32_t>(e.end, static_cast<std::uint32_t>(chars_.size()));
+      }
+    }
+  }
+
+  void collect(pugi::xml_node node, int element, bool preserve) {
+    if (!text_node_) text_node_ = node;
+    for (const pugi::xml_node child : node.children()) {
+      if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
+        add_text(child.value(), element, preserve);
+        continue;
+      }
+      if (child.type() != pugi::node_element) continue;
+      std::string_view name = child.name();
+      if (const std::size_t colon = name.find(':'); colon != std::string_view::npos) name = name.substr(colon + 1);
+      const bool known = name == "tspan" || name == "tref" || name == "a" ||
+                         (name == "textPath" && elements_[static_cast<std::size_t>(element)].path < 0);
+      if (!known) continue;  // title, desc, nested textPath and the like draw nothing
+      int path = elements_[static_cast<std::size_t>(element)].path;
+      if (name == "textPath") {
+        path = text_path(child);
+        if (path < 0) continue;
+      }
+      const std::optional<SpanStyle> style = host_.enter(child);
+      if (!style) continue;
+      const int index = static_cast<int>(elements_.size());
+      elements_.push_back(Element{*style, element, static_cast<std::uint32_t>(chars_.size()), 0, path});
+      if (name != "textPath") read_lists(child, index);
+      const bool child_preserve = preserve_of(child, preserve);
+      if (name == "tref") {
+        if (const pugi::xml_node target = host_.href_target(child)) {
+          for (pugi::xml_node n = target.first_child(); n;) {
+            if (n.type() == pugi::node_pcdata || n.type() == pugi::node_cdata) add_text(n.value(), index, child_preserve);
+            if (n.first_child()) {
+              n = n.first_child();
+              continue;
+            }
+            while (n && n != target && !n.next_sibling()) n = n.parent();
+            if (!n || n == target) break;
+            n = n.next_sibling();
+          }
+        }
+      } else {
+        collect(child, index, child_preserve);
+      }
+      elements_[static_cast<std::size_t>(index)].end = static_cast<std::uint32_t>(chars_.size());
+      host_.leave();
+      if (name == "textPath") path_starts_.push_back(elements_[static_cast<std::size_t>(index)].begin);
+    }
+  }
+
+  /// Reads a textPath's path; -1 when it has none (its content is not drawn).
+  int text_path(pugi::xml_node node) {
+    Path path;
+    if (const pugi::xml_node target = host_.href_target(node)) path = host_.shape_of(target);
+    if (path.empty()) return -1;
+    TextPath tp;
+    Polylines lines;
+    FlattenOptions options;
+    options.tolerance = 0.01;
+    try {
+      flatten(path, Affine{}, options, lines);
+    } catch (const Error&) {
+      return -1;
+    }
+    // The path's contours one after another (a move starts a new piece; its jump is not counted).
+    for (std::size_t k = 0; k < lines.contour_count(); ++k) {
+      const auto pts = lines.contour(k);
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        const double d = tp.points.empty() ? 0
+                         : i == 0          ? tp.length.back()
+                                           : tp.length.back() + std::hypot(pts[i].x - tp.points.back().x,
+                                                                           pts[i].y - tp.points.back().y);
+        tp.points.push_back(pts[i]);
+        tp.length.push_back(d);
+      }
+      if (lines.closed[k] && pts.size() > 1) {
+        tp.length.push_back(tp.length.back() + std::hypot(pts[0].x - pts.back().x, pts[0].y - pts.back().y));
+        tp.points.push_back(pts[0]);
+      }
+    }
+    if (tp.points.size() < 2 || !(tp.total() > 0)) return -1;
+    if (const pugi::xml_attribute side = node.attribute("side"); side && std::string_view(side.value()) == "right") {
+      std::reverse(tp.points.begin(), tp.points.end());
+      const double total = tp.total();
+      std::reverse(tp.length.begin(), tp.length.end());
+      for (double& l : tp.length) l = total - l;
+    }
+    if (const pugi::xml_attribute offset = node.attribute("startOffset")) {
+      const std::string_view v = trim(offset.value());
+      double d = 0;
+      if (!v.empty() && v.back() == '%') {
+        std::size_t p = 0;
+        if (scan_number(v, p, d) == NumberScan::Ok && p + 1 == v.size()) tp.start_offset = d / 100 * tp.total();
+      } else if (host_.length(v, 0, d)) {
+        tp.start_offset = d;
+      }
+    }
+    paths_.push_back(std::move(tp));
+    return static_cast<int>(paths_.size()) - 1;
+  }
+
+  void apply_lists() {
+    for (const Lists& l : lists_) {
+      const Element& e = elements_[static_cast<std::size_t>(l.element)];
+      for (std::uint32_t i = e.begin; i < e.end; ++i) {
+        const std::size_t k = i - e.begin;
+        Char& c = chars_[i];
+        if (k < l.x.size()) c.x = l.x[k];
+        if (k < l.y.size()) c.y = l.y[k];
+        if (k < l.dx.size()) c.dx = l.dx[k];
+        if (k < l.dy.size()) c.dy = l.dy[k];
+        if (!l.rotate.empty()) c.rotate = l.rotate[std::min(k, l.rotate.size() - 1)];
+      }
+    }
+  }
+
+  // ---- 2-4. layout ----
+
+  const Element& element(int i) const { return elements_[static_cast<std::size_t>(i)]; }
+
+  /// The font query of an element.
+  text::FontQuery query_of(const TextProperties& t) const {
+    text::FontQuery q;
+    q.families = t.font_family;
+    q.weight = t.font_weight;
+    q.slant = static_cast<text::FontSlant>(t.font_style);
+    q.stretch = t.font_stretch;
+    return q;
+  }
+
+  /// What has to be equal for two characters to be shaped together.
+  static std::string shaping_key(const TextProperties& t, bool small) {
+    std::string key;
+    for (const std::string& f : t.font_family) key += f + ",";
+    key += "|" + std::to_string(t.font_size) + "|" + std::to_string(t.font_weight) + "|" +
+           std::to_string(t.font_style) + "|" + std::to_string(t.font_stretch) + "|" + t.feature_settings + "|" +
+           (t.kerning ? "k" : "-") + (t.small_caps ? "s" : "-") + (small ? "l" : "-") + (t.rtl ? "r" : "-") + "|" +
+           std::to_string(t.letter_spacing);
+    return key;
+  }
+
+  /// Where baseline `b` lies relative to the alphabetic one in element e's font (down positive).
+  double baseline_line(int e, Baseline b) {
+    const TextProperties& t = element(e).style.text;
+    const double size = std::min(t.font_size, kMaxShapeSize);
+    if (!(size > 0) || b == Baseline::Auto || b == Baseline::Alphabetic) return 0;
+    const std::shared_ptr<text::Font> font = fonts_.match(query_of(t));
+    if (!font) return 0;
+    const text::FontMetrics fm = font->metrics(size);
+    const text::DecorationMetrics dm = font->decoration_metrics(size);
+    double line = 0;
+    switch (b) {
+      case Baseline::Middle: line = dm.x_height / 2; break;
+      case Baseline::Central: line = (fm.ascender + fm.descender) / 2; break;
+      case Baseline::Hanging: line = fm.ascender * 0.8; break;
+      case Baseline::Mathematical: line = fm.ascender / 2; break;
+      case Baseline::TextBeforeEdge: line = fm.ascender; break;
+      case Baseline::TextAfterEdge:
+      case Baseline::Ideographic: line = fm.descender; break;
+      default: break;
+    }
+    return line * t.font_size / size;
+  }
+
+  /// An element's baseline-shift, down positive.
+  double shift_of(int e) {
+    const TextProperties& t = element(e).style.text;
+    if (t.shift == TextProperties::Shift::Length) return -t.shift_length;
+    if (t.shift == TextProperties::Shift::None) return 0;
+    const double size = std::min(t.font_size, kMaxShapeSize);
+    const std::shared_ptr<text::Font> font = size > 0 ? fonts_.match(query_of(t)) : nullptr;
+    if (!font) return 0;
+    const text::DecorationMetrics dm = font->decoration_metrics(size);
+    return (t.shift == TextProperties::Shift::Sub ? dm.subscript_offset : dm.superscript_offset) * t.font_size / size;
+  }
+
+  /// Where element e's alphabetic baseline lies relative to the text's pen y (down positive): the text's
+  /// dominant baseline sits on y; a child aligns its baseline of the chosen kind (alignment-baseline, else the
+  /// dominant one) with the same baseline of its parent; baseline shifts add up.
+  double baseline_offset(int e) {
+    if (const auto it = baseline_cache_.find(e); it != baseline_cache_.end()) return it->second;
+    const TextProperties& t = element(e).style.text;
+    const Baseline b = t.alignment_baseline != Baseline::Auto ? t.alignment_baseline : t.dominant_baseline;
+    const int parent = element(e).parent;
+    double offset = -baseline_line(e, b) + shift_of(e);
+    if (parent >= 0) offset += baseline_offset(parent) + baseline_line(parent, b);
+    baseline_cache_[e] = offset;
+    return offset;
+  }
+
+  struct Run {
+    std::uint32_t begin = 0, end = 0;
+    int element = 0;     // the element of the first character (its font properties are the run's)
+    bool small = false;  // synthesised small capitals: lowercase letters at a smaller size
+  };
+
+  static bool is_lower(char32_t c) {
+    return c < 0x10000 && std::iswlower(static_cast<wint_t>(c)) && std::towupper(static_cast<wint_t>(c)) != static_cast<wint_t>(c);
+  }
+
+  bool synthesise_small_caps(int e) {
+    const TextProperties& t = element(e).style.text;
+    if (!t.small_caps) return false;
+    const auto it = smcp_cache_.find(e);
+    if (it != smcp_cache_.end()) return it->second;
+    const std::shared_ptr<text::Font> f = fonts_.match(query_of(t));
+    return smcp_cache_[e] = !(f && f->has_substitution_feature("smcp"));
+  }
+
+  void layout() {
+    // Chunks: boundaries at absolute positions and textPath starts.
+    std::vector<std::uint32_t> starts{0};
+    for (std::uint32_t i = 1; i < chars_.size(); ++i) {
+      const bool path_start = std::find(path_starts_.begin(), path_starts_.end(), i) != path_starts_.end();
+      const bool path_change = element(chars_[i].element).path != element(chars_[i - 1].element).path;
+      if (chars_[i].x || chars_[i].y || path_start || path_change) starts.push_back(i);
+    }
+    starts.push_back(static_cast<std::uint32_t>(chars_.size()));
+    Point pen{0, 0};
+    for (std::size_t c = 0; c + 1 < starts.size(); ++c) layout_chunk(starts[c], starts[c + 1], static_cast<int>(c), pen);
+  }
+
+  void layout_chunk(std::uint32_t begin, std::uint32_t end, int chunk, Point& pen) {
+    const Char& first = chars_[begin];
+    const int path = element(first.element).path;
+    if (path >= 0 && (begin == 0 || element(chars_[begin - 1].element).path != path)) pen = Point{0, 0};
+    if (first.x) pen.x = *first.x;
+    if (first.y) pen.y = *first.y;
+    // Runs of one shaping style.
+    std::vector<Run> runs;
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const int e = chars_[i].element;
+      const bool small = synthesise_small_caps(e) && is_lower(chars_[i].c);
+      const std::string key = shaping_key(element(e).style.text, small);
+      if (runs.empty() || key != last_key_) runs.push_back(Run{i, i, e, small});
+      runs.back().end = i + 1;
+      last_key_ = key;
+    }
+    last_key_.clear();
+    const TextProperties& chunk_style = element(first.element).style.text;
+    if (chunk_style.rtl) std::reverse(runs.begin(), runs.end());
+    const std::size_t chunk_first_glyph = placed_.size();
+    const double start_x = pen.x;
+    for (const Run& run : runs) shape_and_place(run, chunk, pen);
+    // text-anchor (start is the right end in right-to-left text).
+    const double width = pen.x - start_x;
+    TextAnchor anchor = chunk_style.anchor;
+    if (chunk_style.rtl && anchor != TextAnchor::Middle) anchor = anchor == TextAnchor::Start ? TextAnchor::End : TextAnchor::Start;
+    const double shift = anchor == TextAnchor::Middle ? -width / 2 : anchor == TextAnchor::End ? -width : 0;
+    for (std::size_t g = chunk_first_glyph; g < placed_.size(); ++g) placed_[g].x += shift;
+    pen.x += shift;
+    if (path >= 0) place_on_path(paths_[static_cast<std::size_t>(path)], chunk_first_glyph);
+  }
+
+  void shape_and_place(const Run& run, int chunk, Point& pen) {
+    const TextProperties& t = element(run.element).style.text;
+    std::u32string text;
+    for (std::uint32_t i = run.begin; i < run.end; ++i) {
+      char32_t c = chars_[i].c;
+      if (run.small) c = static_cast<char32_t>(std::towupper(static_cast<wint_t>(c)));
+      text.push_back(c);
+    }
+    const double size = run.small ? t.font_size * 0.7 : t.font_size;
+    if (!(size > 0)) return;
+    const double shape_size = std::min(size, kMaxShapeSize);
+    const double ratio = size / shape_size;
+    text::FontList fonts = fonts_.fonts_for(query_of(t), text);
+    if (fonts.empty()) {
+      if (!warned_fonts_) host_.warn(text_node_, "no font available for text, not drawn");
+      warned_fonts_ = true;
+      return;
+    }
+    text::TextStyle style;
+    style.size = shape_size;
+    style.direction = t.rtl ? text::Direction::RightToLeft : text::Direction::LeftToRight;
+    std::string features = t.feature_settings;
+    auto add = [&](const char* f) { features += features.empty() ? f : std::string(",") + f; };
+    if (!t.kerning) add("kern=0");
+    if (t.small_caps && !synthesise_small_caps(run.element)) add("smcp");
+    if (t.letter_spacing != 0) add("liga=0,clig=0");
+    style.features = features;
+    std::vector<text::ShapedGlyph> glyphs;
+    try {
+      glyphs = text::shape_text(text, fonts, style);
+    } catch (const Error& e) {
+      host_.warn(text_node_, std::string("text not shaped: ") + e.what());
+      return;
+    }
+    for (std::size_t g = 0; g < glyphs.size(); ++g) {
+      const text::ShapedGlyph& sg = glyphs[g];
+      const std::uint32_t ci = run.begin + std::min<std::uint32_t>(sg.cluster, run.end - run.begin - 1);
+      const bool cluster_start = g == 0 || glyphs[g - 1].cluster != sg.cluster;
+      const bool cluster_end = g + 1 == glyphs.size() || glyphs[g + 1].cluster != sg.cluster;
+      const Char& ch = chars_[ci];
+      if (cluster_start) {
+        pen.x += ch.dx;
+        pen.y += ch.dy;
+      }
+      Placed p;
+      p.font = fonts.fonts[sg.font].get();
+      p.glyph = sg.glyph;
+      p.size = size;
+      p.x = pen.x + sg.x_offset * ratio;
+      p.y = pen.y + sg.y_offset * ratio + baseline_offset(ch.element);
+      p.advance = sg.x_advance * ratio;
+      p.rotate = ch.rotate.value_or(0);
+      p.element = ch.element;
+      p.ch = ci;
+      p.chunk = chunk;
+      placed_.push_back(p);
+      pen.x += sg.x_advance * ratio;
+      pen.y -= sg.y_advance * ratio;
+      if (cluster_end) {
+        const TextProperties& ct = element(ch.element).style.text;
+        pen.x += ct.letter_spacing;
+        if (ch.c == ' ') pen.x += ct.word_spacing;
+      }
+      keep_fonts_.push_back(fonts.fonts[sg.font]);
+    }
+    if (keep_fonts_.size() > 4096) dedupe_fonts();
+  }
+
+  void dedupe_fonts() {
+    std::sort(keep_fonts_.begin(), keep_fonts_.end());
+    keep_fonts_.erase(std::unique(keep_fonts_.begin(), keep_fonts_.end()), keep_fonts_.end());
+  }
+
+  /// Glyphs of a textPath chunk: each placed with its advance's midpoint on the path, rotated to the tangent;
+  /// glyphs whose midpoint falls off the path are dropped.
+  void place_on_path(const TextPath& tp, std::size_t first) {
+    std::size_t keep = first;
+    for (std::size_t g = first; g < placed_.size(); ++g) {
+      Placed p = placed_[g];
+      const double mid = tp.start_offset + p.x + p.advance / 2;
+      if (!(mid >= 0 && mid <= tp.total())) continue;
+      const auto [point, angle] = tp.at(mid);
+      p.on_path = true;
+      p.path_transform = Affine::translate(point.x, point.y) * Affine::rotate(angle * 180 / std::numbers::pi) *
+                         Affine::translate(-p.advance / 2, p.y) * Affine::rotate(p.rotate);
+      placed_[keep++] = p;
+    }
+    placed_.resize(keep);
+  }
+
+  // ---- 5. emit ----
+
+  Affine glyph_transform(const Placed& p) const {
+    const double s = p.size / p.font->units_per_em();
+    const Affine scale = Affine::scale(s);
+    if (p.on_path) return p.path_transform * scale;
+    return Affine::translate(p.x, p.y) * Affine::rotate(p.rotate) * scale;
+  }
+
+  PathNode node_for(int e, Path path) {
+    const SpanStyle& s = element(e).style;
+    PathNode n;
+    n.path = std::move(path);
+    n.fill = s.fill;
+    n.stroke = s.stroke;
+    n.stroke_first = s.stroke_first;
+    n.crisp_edges = s.crisp_edges;
+    std::tie(n.line, n.column) = host_.position(text_node_);
+    return n;
+  }
+
+  bool is_inside(int e, int ancestor) const {
+    for (int i = e; i >= 0; i = element(i).parent) {
+      if (i == ancestor) return true;
+    }
+    return false;
+  }
+
+  /// Rectangles of one decoration of element `e` (underline, overline or line-through), one per stretch of its
+  /// glyphs on one baseline of one chunk.
+  Path decoration(int e, std::uint8_t kind) {
+    Path out;
+    const TextProperties& t = element(e).style.text;
+    const double size = std::min(t.font_size, kMaxShapeSize);
+    if (!(size > 0)) return out;
+    const std::shared_ptr<text::Font> font = fonts_.match(query_of(t));
+    if (!font) return out;
+    const double scale = t.font_size / size;
+    const text::DecorationMetrics dm = font->decoration_metrics(size);
+    const text::FontMetrics fm = font->metrics(size);
+    double centre = 0, thickness = dm.underline_thickness * scale;
+    if (kind == TextProperties::kUnderline) centre = dm.underline_position * scale;
+    if (kind == TextProperties::kOverline) centre = fm.ascender * scale + thickness / 2;
+    if (kind == TextProperties::kLineThrough) {
+      centre = dm.strikeout_position * scale;
+      thickness = dm.strikeout_thickness * scale;
+    }
+    std::optional<Rect> current;
+    int current_chunk = -1;
+    double current_y = 0;
+    auto flush = [&] {
+      if (current && current->width() > 0) out.add_rect(*current);
+      current.reset();
+    };
+    for (const Placed& p : placed_) {
+      if (!is_inside(p.element, e)) {
+        flush();
+        continue;
+      }
+      if (p.on_path) {  // along a path: one rectangle per glyph, turned with it
+        Path r;
+        r.add_rect(Rect{0, centre - thickness / 2 - p.y, p.advance, centre + thickness / 2 - p.y});
+        out.add_path(r.transformed(p.path_transform * Affine::rotate(-p.rotate)));
+        continue;
+      }
+      const double base = p.y - (p.y - chars_base_y(p));
+      if (!current || p.chunk != current_chunk || base != current_y) {
+        flush();
+        current = Rect{p.x, base + centre - thickness / 2, p.x, base + centre + thickness / 2};
+        current_chunk = p.chunk;
+        current_y = base;
+      }
+      current->x0 = std::min({current->x0, p.x, p.x + p.advance});
+      current->x1 = std::max({current->x1, p.x, p.x + p.advance});
+    }
+    flush();
+    return out;
+  }
+
+  /// The baseline a glyph's decorations follow: its pen y (dy and baseline shifts included).
+  double chars_base_y(const Placed& p) const { return p.y; }
+
+  void emit(Group& out) {
+    // Glyph outlines, one path per stretch of glyphs of one element.
+    std::vector<PathNode> glyph_nodes;
+    Path current;
+    int current_element = -1;
+    Rect box;
+    bool have_box = false;
+    auto include = [&](const Path& p) {
+      const auto verbs = p.verbs();
+      if (std::all_of(verbs.begin(), verbs.end(), [](Verb v) { return v == Verb::Move; })) return;
+      const Rect b = p.bounds();
+      if (!have_box) box = b;
+      box.include({b.x0, b.y0});
+      box.include({b.x1, b.y1});
+      have_box = true;
+    };
+    auto flush = [&] {
+      if (current_element >= 0 && !current.empty()) {
+        include(current);
+        glyph_nodes.push_back(node_for(current_element, std::move(current)));
+      }
+      current = Path();
+    };
+    for (const Placed& p : placed_) {
+      if (p.element != current_element) {
+        flush();
+        current_element = p.element;
+      }
+      const Path& outline = p.font->outline_units(p.glyph);
+      if (!outline.empty()) current.add_path(outline.transformed(glyph_transform(p)));
+    }
+    flush();
+    // Decorations: from each element that declares one, with that element's paint.
+    std::vector<PathNode> below, above;
+    for (std::size_t e = 0; e < elements_.size(); ++e) {
+      const std::uint8_t d = elements_[e].style.text.decoration;
+      for (const std::uint8_t kind : {TextProperties::kUnderline, TextProperties::kOverline, TextProperties::kLineThrough}) {
+        if (!(d & kind)) continue;
+        Path rects = decoration(static_cast<int>(e), kind);
+        if (rects.empty()) continue;
+        include(rects);
+        (kind == TextProperties::kLineThrough ? above : below).push_back(node_for(static_cast<int>(e), std::move(rects)));
+      }
+    }
+    auto append = [&](std::vector<PathNode>& nodes) {
+      for (PathNode& n : nodes) {
+        if (!n.fill && !n.stroke) continue;
+        if (have_box) n.paint_box = box;
+        out.children.push_back(Node{std::move(n)});
+      }
+    };
+    append(below);
+    append(glyph_nodes);
+    append(above);
+  }
+
+  TextHost& host_;
+  text::FontDb& fonts_;
+  pugi::xml_node text_node_;
+  std::vector<Element> elements_;
+  std::vector<Char> chars_;
+  std::vector<Lists> lists_;
+  std::vector<TextPath> paths_;
+  std::vector<std::uint32_t> path_starts_;
+  std::vector<Placed> placed_;
+  std::vector<std::shared_ptr<text::Font>> keep_fonts_;  // the fonts placed_ points to stay alive
+  std::map<int, double> baseline_cache_;
+  std::map<int, bool> smcp_cache_;
+  std::string last_key_;
+  bool last_space_ = true;  // strips leading white space (xml:space default)
+  bool last_collapsible_ = false;
+  bool warned_size_ = false, warned_fonts_ = false;
+};
+
+}  // namespace
+
+std::shared_ptr<text::FontDb> default_font_db() {
+  auto db = std::make_shared<text::FontDb>();
+  db->add_embedded_default();
+  return db;
+}
+
+void build_text(pugi::xml_node text, const SpanStyle& style, TextHost& host, text::FontDb* fonts, Group& out) {
+  if (!fonts) return;
+  TextBuilder builder(host, *fonts);
+  try {
+    builder.build(text, style, out);
+  } catch (const Error& e) {
+    // A position or size out of range (a path refuses non-finite coordinates): the element draws nothing.
+    out.children.clear();
+    host.warn(text, std::string("text not drawn: ") + e.what());
+  }
+}
+
+}  // namespace vraster::svg::detail
