@@ -560,7 +560,7 @@ class TextBuilder {
     const text::FontMetrics fm = font->metrics(size);
     double centre = 0, thickness = dm.underline_thickness * scale;
     if (kind == TextProperties::kUnderline) centre = dm.underline_position * scale;
-    if (kind == TextProperties::kOverline) centre = fm.ascender * scale + thickness / 2;
+    if (kind == TextProperties::kOverline) centre = fm.ascender * scale;
     if (kind == TextProperties::kLineThrough) {
       centre = dm.strikeout_position * scale;
       thickness = dm.strikeout_thickness * scale;

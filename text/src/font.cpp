@@ -256,9 +256,10 @@ DecorationMetrics Font::decoration_metrics(double size) const {
   const FT_Face face = impl_->face;
   DecorationMetrics m;
   m.underline_thickness = face->underline_thickness > 0 ? face->underline_thickness * s : size / 14;
-  // FreeType gives the top of the underline (post table, y up): its centre is half a thickness lower.
+  // The post table's underlinePosition, used as the line's centre (as browsers and resvg do). FreeType hands it
+  // on lowered by half a thickness (FT_FaceRec: "the center of the underlining stem"), which is undone here.
   m.underline_position = face->underline_position != 0 || face->underline_thickness > 0
-                             ? -face->underline_position * s + m.underline_thickness / 2
+                             ? -(face->underline_position + face->underline_thickness / 2.0) * s
                              : size / 10;
   m.strikeout_thickness = m.underline_thickness;
   m.strikeout_position = -size * 0.3;
@@ -269,7 +270,7 @@ DecorationMetrics Font::decoration_metrics(double size) const {
   const auto* os2 = static_cast<const TT_OS2*>(FT_Get_Sfnt_Table(face, FT_SFNT_OS2));
   if (os2 && os2->version != 0xFFFF) {
     if (os2->yStrikeoutSize > 0) m.strikeout_thickness = os2->yStrikeoutSize * s;
-    if (os2->yStrikeoutPosition > 0) m.strikeout_position = -os2->yStrikeoutPosition * s + m.strikeout_thickness / 2;
+    if (os2->yStrikeoutPosition > 0) m.strikeout_position = -os2->yStrikeoutPosition * s;  // as the centre
     if (os2->ySubscriptYOffset != 0) m.subscript_offset = std::abs(os2->ySubscriptYOffset) * s;
     if (os2->ySuperscriptYOffset != 0) m.superscript_offset = -std::abs(os2->ySuperscriptYOffset) * s;
     if (os2->version >= 2 && os2->sxHeight > 0) m.x_height = -os2->sxHeight * s;

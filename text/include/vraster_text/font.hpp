@@ -37,7 +37,8 @@ struct FontMetrics {
 
 /// Positions for text decorations and baselines at one size, in pixels, y down (negative: above the baseline).
 /// Each comes from the font's tables when it has them (post: underline; OS/2: strikeout, sub- and superscript,
-/// x-height, cap height), otherwise from a usual proportion of the em.
+/// x-height, cap height), otherwise from a usual proportion of the em. The tables' positions are taken as the
+/// lines' centres, as browsers draw them.
 struct DecorationMetrics {
   double underline_position = 0;   ///< centre of the underline (positive: below the baseline)
   double underline_thickness = 0;
