@@ -180,7 +180,8 @@ class Builder {
   Tree run() {
     buffer_.assign(text_.begin(), text_.end());
     const pugi::xml_parse_result result =
-        xml_.load_buffer_inplace(buffer_.data(), buffer_.size(), pugi::parse_default, pugi::encoding_utf8);
+        xml_.load_buffer_inplace(buffer_.data(), buffer_.size(), pugi::parse_default | pugi::parse_ws_pcdata,
+                                 pugi::encoding_utf8);  // white-space-only text counts in <text>
     if (!result) {
       const auto offset = static_cast<std::size_t>(std::max<std::ptrdiff_t>(result.offset, 0));
       fail(std::min(offset, text_.size()), std::string("malformed XML: ") + result.description());

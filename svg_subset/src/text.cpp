@@ -358,7 +358,8 @@ class TextBuilder {
     const TextProperties& t = element(e).style.text;
     const Baseline b = t.alignment_baseline != Baseline::Auto ? t.alignment_baseline : t.dominant_baseline;
     const int parent = element(e).parent;
-    double offset = -baseline_line(e, b) + shift_of(e);
+    // baseline-shift applies to tspan, tref and textPath, not to <text> itself (SVG 1.1, 10.9.2).
+    double offset = -baseline_line(e, b) + (parent >= 0 ? shift_of(e) : 0);
     if (parent >= 0) offset += baseline_offset(parent) + baseline_line(parent, b);
     baseline_cache_[e] = offset;
     return offset;
@@ -420,6 +421,7 @@ class TextBuilder {
     for (const Run& run : runs) shape_and_place(run, chunk, pen);
     // text-anchor (start is the right end in right-to-left text).
     const double width = pen.x - start_x;
+    if (getenv("VT_DEBUG")) fprintf(stderr, "chunk %d [%u,%u) start %g width %g glyphs %zu\n", chunk, begin, end, start_x, width, placed_.size() - chunk_first_glyph);
     TextAnchor anchor = chunk_style.anchor;
     if (chunk_style.rtl && anchor != TextAnchor::Middle) anchor = anchor == TextAnchor::Start ? TextAnchor::End : TextAnchor::Start;
     const double shift = anchor == TextAnchor::Middle ? -width / 2 : anchor == TextAnchor::End ? -width : 0;
