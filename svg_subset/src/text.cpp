@@ -33,6 +33,8 @@ struct Element {
   int parent = -1;
   std::uint32_t begin = 0, end = 0;  // characters [begin, end)
   int path = -1;                     // index into paths when this is (or is inside) a textPath
+  std::optional<double> text_length;  // textLength
+  bool stretch_glyphs = false;        // lengthAdjust="spacingAndGlyphs"
 };
 
 struct Char {
@@ -77,6 +79,7 @@ struct Placed {
   double x = 0, y = 0;          // pen position (origin on the baseline)
   double advance = 0;
   double rotate = 0;            // degrees
+  double stretch = 1;           // horizontal scale (lengthAdjust="spacingAndGlyphs")
   int element = 0;
   std::uint32_t ch = 0;         // first character of its cluster
   int chunk = 0;
@@ -133,6 +136,14 @@ class TextBuilder {
   }
 
   void read_lists(pugi::xml_node node, int element) {
+    if (const auto a = node.attribute("textLength")) {
+      double d = 0;
+      if (host_.length(trim(a.value()), 0, d) && d >= 0 && d < 1e9) {
+        Element& e = elements_[static_cast<std::size_t>(element)];
+        e.text_length = d;
+        e.stretch_glyphs = std::string_view(node.attribute("lengthAdjust").value()) == "spacingAndGlyphs";
+      }
+    }
     Lists l;
     l.element = element;
     if (const auto a = node.attribute("x")) l.x = parse_number_list(a.value(), host_, 0, false);
@@ -419,6 +430,12 @@ class TextBuilder {
     const std::size_t chunk_first_glyph = placed_.size();
     const double start_x = pen.x;
     for (const Run& run : runs) shape_and_place(run, chunk, pen);
+    // textLength: innermost elements first (they come later in elements_).
+    // An element that spans several chunks keeps its natural length (as resvg does).
+    for (std::size_t e = elements_.size(); e-- > 0;) {
+      if (elements_[e].text_length && elements_[e].begin >= begin && elements_[e].end <= end)
+        fit_length(static_cast<int>(e), chunk_first_glyph, pen);
+    }
     // text-anchor (start is the right end in right-to-left text).
     const double width = pen.x - start_x;
     if (getenv("VT_DEBUG")) fprintf(stderr, "chunk %d [%u,%u) start %g width %g glyphs %zu\n", chunk, begin, end, start_x, width, placed_.size() - chunk_first_glyph);
@@ -428,6 +445,43 @@ class TextBuilder {
     for (std::size_t g = chunk_first_glyph; g < placed_.size(); ++g) placed_[g].x += shift;
     pen.x += shift;
     if (path >= 0) place_on_path(paths_[static_cast<std::size_t>(path)], chunk_first_glyph);
+  }
+
+  /// textLength on element e: its glyphs in this chunk spaced (or stretched) to span exactly that length; the
+  /// glyphs after them move along.
+  void fit_length(int e, std::size_t first, Point& pen) {
+    std::size_t begin = placed_.size(), end = first;
+    for (std::size_t g = first; g < placed_.size(); ++g) {
+      if (!is_inside(placed_[g].element, e)) continue;
+      begin = std::min(begin, g);
+      end = g + 1;
+    }
+    if (begin >= end) return;
+    const double x0 = placed_[begin].x;
+    const double width = placed_[end - 1].x + placed_[end - 1].advance * placed_[end - 1].stretch - x0;
+    const double target = *element(e).text_length;
+    if (!(width > 0)) return;
+    const double diff = target - width;
+    if (element(e).stretch_glyphs) {
+      const double k = target / width;
+      for (std::size_t g = begin; g < end; ++g) {
+        placed_[g].x = x0 + (placed_[g].x - x0) * k;
+        placed_[g].stretch *= k;
+      }
+    } else {
+      // Extra space between clusters: the last glyph ends at the target length.
+      std::size_t clusters = 0;
+      for (std::size_t g = begin; g < end; ++g) clusters += g == begin || placed_[g].ch != placed_[g - 1].ch;
+      const double step = clusters > 1 ? diff / static_cast<double>(clusters - 1) : 0;
+      std::size_t k = 0;
+      for (std::size_t g = begin; g < end; ++g) {
+        if (g != begin && placed_[g].ch != placed_[g - 1].ch) ++k;
+        placed_[g].x += step * static_cast<double>(k);
+      }
+      if (clusters <= 1) return;
+    }
+    for (std::size_t g = end; g < placed_.size(); ++g) placed_[g].x += diff;
+    pen.x += diff;
   }
 
   void shape_and_place(const Run& run, int chunk, Point& pen) {
@@ -524,7 +578,7 @@ class TextBuilder {
 
   Affine glyph_transform(const Placed& p) const {
     const double s = p.size / p.font->units_per_em();
-    const Affine scale = Affine::scale(s);
+    const Affine scale = Affine::scale(s * p.stretch, s);
     if (p.on_path) return p.path_transform * scale;
     return Affine::translate(p.x, p.y) * Affine::rotate(p.rotate) * scale;
   }
@@ -592,8 +646,8 @@ class TextBuilder {
         current_chunk = p.chunk;
         current_y = base;
       }
-      current->x0 = std::min({current->x0, p.x, p.x + p.advance});
-      current->x1 = std::max({current->x1, p.x, p.x + p.advance});
+      current->x0 = std::min({current->x0, p.x, p.x + p.advance * p.stretch});
+      current->x1 = std::max({current->x1, p.x, p.x + p.advance * p.stretch});
     }
     flush();
     return out;
