@@ -561,6 +561,7 @@ class Builder {
     for (const pugi::xml_attribute attr : node.attributes()) {
       const std::string_view name = attr.name();
       if (!is_property(name) || name == "transform") continue;  // transform is an attribute here, not CSS
+      if (detail::is_text_property(name) && !detail::is_text_attribute(name)) continue;
       const std::string_view raw = attr.value();
       const std::string_view v = trim(raw);
       own.push_back(css::Declaration{std::string(name), std::string(v), false,

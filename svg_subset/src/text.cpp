@@ -87,7 +87,8 @@ struct Placed {
   Affine path_transform;        // for glyphs on a path: the whole placement
 };
 
-std::vector<double> parse_number_list(std::string_view v, TextHost& host, int axis, bool plain_numbers) {
+/// x, y, dx, dy (lengths; em and ex relative to the element's font size) or rotate (plain numbers).
+std::vector<double> parse_number_list(std::string_view v, TextHost& host, int axis, bool plain_numbers, double em) {
   std::vector<double> out;
   std::size_t pos = 0;
   skip_wsp(v, pos);
@@ -99,6 +100,10 @@ std::vector<double> parse_number_list(std::string_view v, TextHost& host, int ax
     if (plain_numbers) {
       std::size_t p = 0;
       if (scan_number(item, p, d) != NumberScan::Ok || p != item.size()) return out;
+    } else if (item.size() > 2 && (iequals(item.substr(item.size() - 2), "em") || iequals(item.substr(item.size() - 2), "ex"))) {
+      std::size_t p = 0;
+      if (scan_number(item, p, d) != NumberScan::Ok || p != item.size() - 2) return out;
+      d *= iequals(item.substr(item.size() - 2), "em") ? em : em / 2;
     } else if (!host.length(item, axis, d)) {
       return out;
     }
@@ -146,11 +151,12 @@ class TextBuilder {
     }
     Lists l;
     l.element = element;
-    if (const auto a = node.attribute("x")) l.x = parse_number_list(a.value(), host_, 0, false);
-    if (const auto a = node.attribute("y")) l.y = parse_number_list(a.value(), host_, 1, false);
-    if (const auto a = node.attribute("dx")) l.dx = parse_number_list(a.value(), host_, 0, false);
-    if (const auto a = node.attribute("dy")) l.dy = parse_number_list(a.value(), host_, 1, false);
-    if (const auto a = node.attribute("rotate")) l.rotate = parse_number_list(a.value(), host_, 2, true);
+    const double em = elements_[static_cast<std::size_t>(element)].style.text.font_size;
+    if (const auto a = node.attribute("x")) l.x = parse_number_list(a.value(), host_, 0, false, em);
+    if (const auto a = node.attribute("y")) l.y = parse_number_list(a.value(), host_, 1, false, em);
+    if (const auto a = node.attribute("dx")) l.dx = parse_number_list(a.value(), host_, 0, false, em);
+    if (const auto a = node.attribute("dy")) l.dy = parse_number_list(a.value(), host_, 1, false, em);
+    if (const auto a = node.attribute("rotate")) l.rotate = parse_number_list(a.value(), host_, 2, true, em);
     if (!l.x.empty() || !l.y.empty() || !l.dx.empty() || !l.dy.empty() || !l.rotate.empty())
       lists_.push_back(std::move(l));
   }

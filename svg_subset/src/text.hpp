@@ -60,6 +60,8 @@ struct TextProperties {
 
 /// Whether `name` is a text property (or the `font` shorthand) handled by apply_text_property.
 bool is_text_property(std::string_view name);
+/// Whether `name` is a text property that may also be given as a presentation attribute.
+bool is_text_attribute(std::string_view name);
 /// Applies one declaration; false when the value is invalid (the caller warns). `parent` is for relative values.
 bool apply_text_property(std::string_view name, std::string_view value, TextProperties& s,
                          const TextProperties& parent);

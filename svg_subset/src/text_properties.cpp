@@ -15,7 +15,7 @@ constexpr std::string_view kTextProperties[] = {
     "font",          "font-family",        "font-size",          "font-weight",       "font-style",
     "font-stretch",  "font-variant",       "font-kerning",       "font-feature-settings", "letter-spacing",
     "word-spacing",  "text-anchor",        "direction",          "writing-mode",      "dominant-baseline",
-    "alignment-baseline", "baseline-shift", "text-decoration",   "font-variant-caps"};
+    "alignment-baseline", "baseline-shift", "text-decoration",   "font-variant-caps", "kerning"};
 
 std::vector<std::string_view> split_words(std::string_view v) {
   std::vector<std::string_view> out;
@@ -50,12 +50,13 @@ bool css_length(std::string_view v, double em, double percent_of, double& out) {
 }
 
 bool parse_font_size(std::string_view v, double parent, double& out) {
-  static constexpr std::pair<std::string_view, double> kKeywords[] = {
-      {"xx-small", 9}, {"x-small", 10}, {"small", 13}, {"medium", 16}, {"large", 18}, {"x-large", 24},
-      {"xx-large", 32}, {"xxx-large", 48}};
-  for (const auto& [name, size] : kKeywords) {
+  // Absolute keywords: steps of 1.2 around medium = 12 px (what resvg's reference renderings use).
+  static constexpr std::pair<std::string_view, int> kKeywords[] = {
+      {"xx-small", -3}, {"x-small", -2}, {"small", -1}, {"medium", 0}, {"large", 1}, {"x-large", 2},
+      {"xx-large", 3}, {"xxx-large", 4}};
+  for (const auto& [name, step] : kKeywords) {
     if (v == name) {
-      out = size;
+      out = 12 * std::pow(1.2, step);
       return true;
     }
   }
@@ -203,6 +204,7 @@ bool apply_font_shorthand(std::string_view v, TextProperties& s, const TextPrope
   t.small_caps = false;
   t.font_weight = 400;
   t.font_stretch = 100;
+  t.kerning = true;  // the shorthand resets font-kerning too
   std::size_t i = 0;
   for (int words = 0; words < 5; ++words) {
     while (i < v.size() && is_wsp(v[i])) ++i;
@@ -230,6 +232,12 @@ bool apply_font_shorthand(std::string_view v, TextProperties& s, const TextPrope
 
 }  // namespace
 
+bool is_text_attribute(std::string_view name) {
+  // CSS-only: no presentation attribute of that name exists.
+  return is_text_property(name) && name != "font-kerning" && name != "font-feature-settings" &&
+         name != "font-variant-caps";
+}
+
 bool is_text_property(std::string_view name) {
   return std::find(std::begin(kTextProperties), std::end(kTextProperties), name) != std::end(kTextProperties);
 }
@@ -249,6 +257,16 @@ bool apply_text_property(std::string_view name, std::string_view v, TextProperti
   if (name == "font-kerning") {
     if (v != "auto" && v != "normal" && v != "none") return false;
     s.kerning = v != "none";
+    return true;
+  }
+  if (name == "kerning") {  // SVG 1.1: auto, or a length (0 turns kerning off; others are not supported)
+    if (v == "auto") {
+      s.kerning = true;
+      return true;
+    }
+    double d = 0;
+    if (!css_length(v, s.font_size, s.font_size, d)) return false;
+    s.kerning = d != 0;
     return true;
   }
   if (name == "font-feature-settings") return parse_feature_settings(v, s.feature_settings);
@@ -319,7 +337,7 @@ void inherit_text_property(std::string_view name, TextProperties& s, const TextP
   else if (name == "font-style") s.font_style = p.font_style;
   else if (name == "font-stretch") s.font_stretch = p.font_stretch;
   else if (name == "font-variant" || name == "font-variant-caps") s.small_caps = p.small_caps;
-  else if (name == "font-kerning") s.kerning = p.kerning;
+  else if (name == "font-kerning" || name == "kerning") s.kerning = p.kerning;
   else if (name == "font-feature-settings") s.feature_settings = p.feature_settings;
   else if (name == "letter-spacing") s.letter_spacing = p.letter_spacing;
   else if (name == "word-spacing") s.word_spacing = p.word_spacing;
