@@ -27,6 +27,7 @@ namespace {
 
 constexpr std::size_t kMaxChars = 1 << 20;  // characters per text element (more are dropped with a warning)
 constexpr double kMaxShapeSize = text::kMaxFontSize;
+constexpr double kShapeSize = 1000;  // px per em runs are shaped at (positions are then scaled per glyph)
 
 struct Element {
   SpanStyle style;
@@ -321,16 +322,25 @@ class TextBuilder {
     return q;
   }
 
-  /// What has to be equal for two characters to be shaped together.
-  static std::string shaping_key(const TextProperties& t, bool small) {
+  /// What has to be equal for two characters to be shaped together. Not the font size: HarfBuzz positions
+  /// scale with it, so a run is shaped once at kShapeSize and each glyph scaled to its own element's size (kerning
+  /// and joining work across tspans of different sizes).
+  static std::string shaping_key(const TextProperties& t) {
     std::string key;
     for (const std::string& f : t.font_family) key += f + ",";
-    key += "|" + std::to_string(t.font_size) + "|" + std::to_string(t.font_weight) + "|" +
-           std::to_string(t.font_style) + "|" + std::to_string(t.font_stretch) + "|" + t.feature_settings + "|" +
-           (t.kerning ? "k" : "-") + (t.small_caps ? "s" : "-") + (small ? "l" : "-") + (t.rtl ? "r" : "-") + "|" +
-           std::to_string(t.letter_spacing);
+    key += "|" + std::to_string(t.font_weight) + "|" + std::to_string(t.font_style) + "|" +
+           std::to_string(t.font_stretch) + "|" + t.feature_settings + "|" + (t.kerning ? "k" : "-") +
+           (t.small_caps ? "s" : "-") + (t.rtl ? "r" : "-") + (t.letter_spacing != 0 ? "l" : "-");
     return key;
   }
+
+  /// The size a character is drawn at (synthesised small capitals: lowercase letters smaller).
+  double char_size(std::uint32_t i) {
+    const Char& c = chars_[i];
+    const double size = element(c.element).style.text.font_size;
+    return is_small(i) ? size * 0.7 : size;
+  }
+  bool is_small(std::uint32_t i) { return synthesise_small_caps(chars_[i].element) && is_lower(chars_[i].c); }
 
   /// Where baseline `b` lies relative to the alphabetic one in element e's font (down positive).
   double baseline_line(int e, Baseline b) {
@@ -384,8 +394,7 @@ class TextBuilder {
 
   struct Run {
     std::uint32_t begin = 0, end = 0;
-    int element = 0;     // the element of the first character (its font properties are the run's)
-    bool small = false;  // synthesised small capitals: lowercase letters at a smaller size
+    int element = 0;  // the element of the first character (its font properties are the run's)
   };
 
   static bool is_lower(char32_t c) {
@@ -424,9 +433,8 @@ class TextBuilder {
     std::vector<Run> runs;
     for (std::uint32_t i = begin; i < end; ++i) {
       const int e = chars_[i].element;
-      const bool small = synthesise_small_caps(e) && is_lower(chars_[i].c);
-      const std::string key = shaping_key(element(e).style.text, small);
-      if (runs.empty() || key != last_key_) runs.push_back(Run{i, i, e, small});
+      const std::string key = shaping_key(element(e).style.text);
+      if (runs.empty() || key != last_key_) runs.push_back(Run{i, i, e});
       runs.back().end = i + 1;
       last_key_ = key;
     }
@@ -495,13 +503,9 @@ class TextBuilder {
     std::u32string text;
     for (std::uint32_t i = run.begin; i < run.end; ++i) {
       char32_t c = chars_[i].c;
-      if (run.small) c = static_cast<char32_t>(std::towupper(static_cast<wint_t>(c)));
+      if (is_small(i)) c = static_cast<char32_t>(std::towupper(static_cast<wint_t>(c)));
       text.push_back(c);
     }
-    const double size = run.small ? t.font_size * 0.7 : t.font_size;
-    if (!(size > 0)) return;
-    const double shape_size = std::min(size, kMaxShapeSize);
-    const double ratio = size / shape_size;
     text::FontList fonts = fonts_.fonts_for(query_of(t), text);
     if (fonts.empty()) {
       if (!warned_fonts_) host_.warn(text_node_, "no font available for text, not drawn");
@@ -509,7 +513,7 @@ class TextBuilder {
       return;
     }
     text::TextStyle style;
-    style.size = shape_size;
+    style.size = kShapeSize;
     style.direction = t.rtl ? text::Direction::RightToLeft : text::Direction::LeftToRight;
     std::string features = t.feature_settings;
     auto add = [&](const char* f) { features += features.empty() ? f : std::string(",") + f; };
@@ -530,6 +534,8 @@ class TextBuilder {
       const bool cluster_start = g == 0 || glyphs[g - 1].cluster != sg.cluster;
       const bool cluster_end = g + 1 == glyphs.size() || glyphs[g + 1].cluster != sg.cluster;
       const Char& ch = chars_[ci];
+      const double size = char_size(ci);
+      const double ratio = size > 0 ? size / kShapeSize : 0;
       if (cluster_start) {
         pen.x += ch.dx;
         pen.y += ch.dy;
@@ -545,7 +551,7 @@ class TextBuilder {
       p.element = ch.element;
       p.ch = ci;
       p.chunk = chunk;
-      placed_.push_back(p);
+      if (size > 0) placed_.push_back(p);
       pen.x += sg.x_advance * ratio;
       pen.y -= sg.y_advance * ratio;
       if (cluster_end) {
