@@ -378,8 +378,8 @@ class TextBuilder {
   }
 
   /// Where element e's alphabetic baseline lies relative to the text's pen y (down positive): the text's
-  /// dominant baseline sits on y; a child aligns its baseline of the chosen kind (alignment-baseline, else the
-  /// dominant one) with the same baseline of its parent; baseline shifts add up.
+  /// dominant baseline sits on y; a child puts its baseline of the chosen kind (alignment-baseline, else its
+  /// dominant one) on the parent's dominant baseline; baseline shifts add up.
   double baseline_offset(int e) {
     if (const auto it = baseline_cache_.find(e); it != baseline_cache_.end()) return it->second;
     const TextProperties& t = element(e).style.text;
@@ -387,7 +387,8 @@ class TextBuilder {
     const int parent = element(e).parent;
     // baseline-shift applies to tspan, tref and textPath, not to <text> itself (SVG 1.1, 10.9.2).
     double offset = -baseline_line(e, b) + (parent >= 0 ? shift_of(e) : 0);
-    if (parent >= 0) offset += baseline_offset(parent) + baseline_line(parent, b);
+    // ... placed on the parent's dominant baseline.
+    if (parent >= 0) offset += baseline_offset(parent) + baseline_line(parent, element(parent).style.text.dominant_baseline);
     baseline_cache_[e] = offset;
     return offset;
   }

@@ -174,9 +174,6 @@ bool parse_baseline(std::string_view v, Baseline& out) {
       {"auto", Baseline::Auto},
       {"baseline", Baseline::Alphabetic},
       {"alphabetic", Baseline::Alphabetic},
-      {"use-script", Baseline::Auto},
-      {"no-change", Baseline::Auto},
-      {"reset-size", Baseline::Auto},
       {"middle", Baseline::Middle},
       {"central", Baseline::Central},
       {"hanging", Baseline::Hanging},
@@ -294,8 +291,17 @@ bool apply_text_property(std::string_view name, std::string_view v, TextProperti
     else return false;
     return true;
   }
-  if (name == "dominant-baseline") return parse_baseline(v, s.dominant_baseline);
-  if (name == "alignment-baseline") return parse_baseline(v, s.alignment_baseline);
+  if (name == "dominant-baseline") {
+    if (v == "no-change" || v == "reset-size" || v == "use-script") return true;  // SVG 1.1: keep the inherited
+    return parse_baseline(v, s.dominant_baseline);
+  }
+  if (name == "alignment-baseline") {
+    if (v == "baseline") {  // the dominant baseline
+      s.alignment_baseline = Baseline::Auto;
+      return true;
+    }
+    return parse_baseline(v, s.alignment_baseline);
+  }
   if (name == "baseline-shift") {
     if (v == "baseline") {
       s.shift = TextProperties::Shift::None;
