@@ -652,7 +652,14 @@ class TextBuilder {
         out.add_path(r.transformed(p.path_transform * Affine::rotate(-p.rotate)));
         continue;
       }
-      const double base = p.y - (p.y - chars_base_y(p));
+      if (p.rotate != 0) {  // a rotated glyph: its own piece of line, turned with it
+        flush();
+        Path r;
+        r.add_rect(Rect{0, centre - thickness / 2, p.advance * p.stretch, centre + thickness / 2});
+        out.add_path(r.transformed(Affine::translate(p.x, p.y) * Affine::rotate(p.rotate)));
+        continue;
+      }
+      const double base = p.y;
       if (!current || p.chunk != current_chunk || base != current_y) {
         flush();
         current = Rect{p.x, base + centre - thickness / 2, p.x, base + centre + thickness / 2};
@@ -665,9 +672,6 @@ class TextBuilder {
     flush();
     return out;
   }
-
-  /// The baseline a glyph's decorations follow: its pen y (dy and baseline shifts included).
-  double chars_base_y(const Placed& p) const { return p.y; }
 
   void emit(Group& out) {
     // Glyph outlines, one path per stretch of glyphs of one element.
@@ -704,7 +708,9 @@ class TextBuilder {
     // Decorations: from each element that declares one, with that element's paint.
     std::vector<PathNode> below, above;
     for (std::size_t e = 0; e < elements_.size(); ++e) {
-      const std::uint8_t d = elements_[e].style.text.decoration;
+      // Decorations of elements around <text> are drawn as the text's own (with its paint).
+      const TextProperties& t = elements_[e].style.text;
+      const std::uint8_t d = e == 0 ? t.decoration | t.ancestor_decoration : t.decoration;
       for (const std::uint8_t kind : {TextProperties::kUnderline, TextProperties::kOverline, TextProperties::kLineThrough}) {
         if (!(d & kind)) continue;
         Path rects = decoration(static_cast<int>(e), kind);

@@ -40,6 +40,7 @@ struct TextProperties {
   bool rtl = false;                      ///< direction
   bool vertical = false;                 ///< writing-mode tb / vertical-*
   Baseline dominant_baseline = Baseline::Auto;
+  std::uint8_t ancestor_decoration = 0;  ///< text-decoration of the ancestors (drawn as if set on <text>)
   // Not inherited.
   Baseline alignment_baseline = Baseline::Auto;
   enum class Shift : std::uint8_t { None, Sub, Super, Length };
@@ -51,6 +52,7 @@ struct TextProperties {
 
   /// Resets the properties that are not inherited (a child's starting point).
   void reset_non_inherited() {
+    ancestor_decoration |= decoration;
     alignment_baseline = Baseline::Auto;
     shift = Shift::None;
     shift_length = 0;
