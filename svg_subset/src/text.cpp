@@ -557,12 +557,26 @@ class TextBuilder {
       pen.y -= sg.y_advance * ratio;
       if (cluster_end) {
         const TextProperties& ct = element(ch.element).style.text;
-        pen.x += ct.letter_spacing;
-        if (ch.c == ' ') pen.x += ct.word_spacing;
+        if (!is_cursive(ch.c)) pen.x += spacing(ct.letter_spacing, ct.letter_spacing_percent);
+        if (ch.c == ' ') pen.x += spacing(ct.word_spacing, ct.word_spacing_percent);
       }
       keep_fonts_.push_back(fonts.fonts[sg.font]);
     }
     if (keep_fonts_.size() > 4096) dedupe_fonts();
+  }
+
+  /// A letter- or word-spacing in px (percentages of the viewport's diagonal measure, as SVG lengths).
+  double spacing(double value, bool percent) {
+    if (!percent || value == 0) return value;
+    double unit = 0;
+    return host_.length("1%", 2, unit) ? value * unit : 0;
+  }
+
+  /// Scripts whose letters join: letter-spacing would break them apart, so it is not applied (CSS Text 3,
+  /// "cursive tracking").
+  static bool is_cursive(char32_t c) {
+    return (c >= 0x0600 && c <= 0x08FF) || (c >= 0xFB50 && c <= 0xFDFF) || (c >= 0xFE70 && c <= 0xFEFF) ||
+           (c >= 0x0700 && c <= 0x074F) || (c >= 0x1800 && c <= 0x18AF);
   }
 
   void dedupe_fonts() {

@@ -35,7 +35,8 @@ struct TextProperties {
   bool small_caps = false;
   bool kerning = true;
   std::string feature_settings;          ///< HarfBuzz syntax, from font-feature-settings
-  double letter_spacing = 0, word_spacing = 0;  ///< px
+  double letter_spacing = 0, word_spacing = 0;  ///< px, or percent when the flag below is set
+  bool letter_spacing_percent = false, word_spacing_percent = false;  ///< of the viewport (like SVG lengths)
   TextAnchor anchor = TextAnchor::Start;
   bool rtl = false;                      ///< direction
   bool vertical = false;                 ///< writing-mode tb / vertical-*

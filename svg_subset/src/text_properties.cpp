@@ -269,8 +269,10 @@ bool apply_text_property(std::string_view name, std::string_view v, TextProperti
   if (name == "font-feature-settings") return parse_feature_settings(v, s.feature_settings);
   if (name == "letter-spacing" || name == "word-spacing") {
     double d = 0;
-    if (v != "normal" && !css_length(v, s.font_size, s.font_size, d)) return false;
+    const bool percent = !v.empty() && v.back() == '%';
+    if (v != "normal" && !css_length(v, s.font_size, 100, d)) return false;
     (name == "letter-spacing" ? s.letter_spacing : s.word_spacing) = std::clamp(d, -kMaxTextSize, kMaxTextSize);
+    (name == "letter-spacing" ? s.letter_spacing_percent : s.word_spacing_percent) = percent;
     return true;
   }
   if (name == "text-anchor") {
@@ -345,8 +347,13 @@ void inherit_text_property(std::string_view name, TextProperties& s, const TextP
   else if (name == "font-variant" || name == "font-variant-caps") s.small_caps = p.small_caps;
   else if (name == "font-kerning" || name == "kerning") s.kerning = p.kerning;
   else if (name == "font-feature-settings") s.feature_settings = p.feature_settings;
-  else if (name == "letter-spacing") s.letter_spacing = p.letter_spacing;
-  else if (name == "word-spacing") s.word_spacing = p.word_spacing;
+  else if (name == "letter-spacing") {
+    s.letter_spacing = p.letter_spacing;
+    s.letter_spacing_percent = p.letter_spacing_percent;
+  } else if (name == "word-spacing") {
+    s.word_spacing = p.word_spacing;
+    s.word_spacing_percent = p.word_spacing_percent;
+  }
   else if (name == "text-anchor") s.anchor = p.anchor;
   else if (name == "direction") s.rtl = p.rtl;
   else if (name == "writing-mode") s.vertical = p.vertical;
