@@ -452,7 +452,12 @@ class TextBuilder {
         fit_length(static_cast<int>(e), chunk_first_glyph, pen);
     }
     // text-anchor (start is the right end in right-to-left text).
-    const double width = pen.x - start_x;
+    // The chunk's width: its advance without the letter-spacing after its last character.
+    double width = pen.x - start_x;
+    if (end > begin) {
+      const TextProperties& last = element(chars_[end - 1].element).style.text;
+      if (!is_cursive(chars_[end - 1].c)) width -= spacing(last.letter_spacing, last.letter_spacing_percent);
+    }
     if (getenv("VT_DEBUG")) fprintf(stderr, "chunk %d [%u,%u) start %g width %g glyphs %zu\n", chunk, begin, end, start_x, width, placed_.size() - chunk_first_glyph);
     TextAnchor anchor = chunk_style.anchor;
     if (chunk_style.rtl && anchor != TextAnchor::Middle) anchor = anchor == TextAnchor::Start ? TextAnchor::End : TextAnchor::Start;
