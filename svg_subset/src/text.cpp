@@ -34,6 +34,7 @@ struct Element {
   int parent = -1;
   std::uint32_t begin = 0, end = 0;  // characters [begin, end)
   int path = -1;                     // index into paths when this is (or is inside) a textPath
+  bool dropped = false;              // inside a textPath without a path: not drawn, takes no space
   std::optional<double> text_length;  // textLength
   bool stretch_glyphs = false;        // lengthAdjust="spacingAndGlyphs"
 };
@@ -126,6 +127,7 @@ class TextBuilder {
     collect(text, 0, preserve_of(text, false));
     elements_[0].end = static_cast<std::uint32_t>(chars_.size());
     trim_trailing();
+    drop_unplaced();
     if (chars_.empty()) return;
     apply_lists();
     layout();
@@ -196,6 +198,23 @@ class TextBuilder {
     }
   }
 
+  /// Removes the characters of dropped elements, keeping every element's range consistent.
+  void drop_unplaced() {
+    std::vector<std::uint32_t> new_index(chars_.size() + 1);
+    std::uint32_t n = 0;
+    for (std::uint32_t i = 0; i < chars_.size(); ++i) {
+      new_index[i] = n;
+      if (!elements_[static_cast<std::size_t>(chars_[i].element)].dropped) chars_[n++] = chars_[i];
+    }
+    new_index[chars_.size()] = n;
+    chars_.resize(n);
+    for (Element& e : elements_) {
+      e.begin = new_index[e.begin];
+      e.end = new_index[e.end];
+    }
+    for (std::uint32_t& start : path_starts_) start = new_index[start];
+  }
+
   void collect(pugi::xml_node node, int element, bool preserve) {
     if (!text_node_) text_node_ = node;
     for (const pugi::xml_node child : node.children()) {
@@ -210,14 +229,16 @@ class TextBuilder {
                          (name == "textPath" && elements_[static_cast<std::size_t>(element)].path < 0);
       if (!known) continue;  // title, desc, nested textPath and the like draw nothing
       int path = elements_[static_cast<std::size_t>(element)].path;
+      bool dropped = elements_[static_cast<std::size_t>(element)].dropped;
       if (name == "textPath") {
         path = text_path(child);
-        if (path < 0) continue;
+        dropped = dropped || path < 0;  // no usable path: its text takes part in white-space handling only
       }
       const std::optional<SpanStyle> style = host_.enter(child);
       if (!style) continue;
       const int index = static_cast<int>(elements_.size());
       elements_.push_back(Element{*style, element, static_cast<std::uint32_t>(chars_.size()), 0, path});
+      elements_.back().dropped = dropped;
       if (name != "textPath") read_lists(child, index);
       const bool child_preserve = preserve_of(child, preserve);
       if (name == "tref") {
@@ -238,7 +259,7 @@ class TextBuilder {
       }
       elements_[static_cast<std::size_t>(index)].end = static_cast<std::uint32_t>(chars_.size());
       host_.leave();
-      if (name == "textPath") path_starts_.push_back(elements_[static_cast<std::size_t>(index)].begin);
+      if (name == "textPath" && !dropped) path_starts_.push_back(elements_[static_cast<std::size_t>(index)].begin);
     }
   }
 
@@ -429,7 +450,7 @@ class TextBuilder {
     const int path = element(first.element).path;
     if (path >= 0 && (begin == 0 || element(chars_[begin - 1].element).path != path)) pen = Point{0, 0};
     if (first.x) pen.x = *first.x;
-    if (first.y) pen.y = *first.y;
+    if (first.y && path < 0) pen.y = *first.y;  // on a path, absolute y means nothing (SVG 1.1, 10.13.2)
     // Runs of one shaping style.
     std::vector<Run> runs;
     for (std::uint32_t i = begin; i < end; ++i) {
@@ -464,7 +485,12 @@ class TextBuilder {
     const double shift = anchor == TextAnchor::Middle ? -width / 2 : anchor == TextAnchor::End ? -width : 0;
     for (std::size_t g = chunk_first_glyph; g < placed_.size(); ++g) placed_[g].x += shift;
     pen.x += shift;
-    if (path >= 0) place_on_path(paths_[static_cast<std::size_t>(path)], chunk_first_glyph);
+    if (path >= 0) {
+      const TextPath& tp = paths_[static_cast<std::size_t>(path)];
+      place_on_path(tp, chunk_first_glyph);
+      // Text after the textPath goes on from where its last character ended on the path.
+      pen = tp.at(std::clamp(tp.start_offset + pen.x, 0.0, tp.total())).first;
+    }
   }
 
   /// textLength on element e: its glyphs in this chunk spaced (or stretched) to span exactly that length; the
