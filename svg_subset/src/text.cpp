@@ -340,6 +340,8 @@ class TextBuilder {
     q.weight = t.font_weight;
     q.slant = static_cast<text::FontSlant>(t.font_style);
     q.stretch = t.font_stretch;
+    for (const auto& [tag, value] : t.variation_settings) q.variations.push_back(text::FontVariation{tag, value});
+    q.optical_size = t.font_size;
     return q;
   }
 
@@ -352,7 +354,19 @@ class TextBuilder {
     key += "|" + std::to_string(t.font_weight) + "|" + std::to_string(t.font_style) + "|" +
            std::to_string(t.font_stretch) + "|" + t.feature_settings + "|" + (t.kerning ? "k" : "-") +
            (t.small_caps ? "s" : "-") + (t.rtl ? "r" : "-") + (t.letter_spacing != 0 ? "l" : "-");
+    for (const auto& [tag, value] : t.variation_settings) key += "|" + std::to_string(tag) + "=" + std::to_string(value);
     return key;
+  }
+
+  /// shaping_key of an element, with its font size when its font is variable (the opsz axis follows the size).
+  const std::string& key_of(int e) {
+    auto it = key_cache_.find(e);
+    if (it != key_cache_.end()) return it->second;
+    const TextProperties& t = element(e).style.text;
+    std::string key = shaping_key(t);
+    const std::shared_ptr<text::Font> f = fonts_.match(query_of(t));
+    if (f && f->is_variable()) key += "|" + std::to_string(t.font_size);
+    return key_cache_[e] = std::move(key);
   }
 
   /// The size a character is drawn at (synthesised small capitals: lowercase letters smaller).
@@ -455,7 +469,7 @@ class TextBuilder {
     std::vector<Run> runs;
     for (std::uint32_t i = begin; i < end; ++i) {
       const int e = chars_[i].element;
-      const std::string key = shaping_key(element(e).style.text);
+      const std::string key = key_of(e);
       if (runs.empty() || key != last_key_) runs.push_back(Run{i, i, e});
       runs.back().end = i + 1;
       last_key_ = key;
@@ -788,6 +802,7 @@ class TextBuilder {
   std::vector<std::shared_ptr<text::Font>> keep_fonts_;  // the fonts placed_ points to stay alive
   std::map<int, double> baseline_cache_;
   std::map<int, bool> smcp_cache_;
+  std::map<int, std::string> key_cache_;
   std::string last_key_;
   bool last_space_ = true;  // strips leading white space (xml:space default)
   bool last_collapsible_ = false;

@@ -35,6 +35,7 @@ struct TextProperties {
   bool small_caps = false;
   bool kerning = true;
   std::string feature_settings;          ///< HarfBuzz syntax, from font-feature-settings
+  std::vector<std::pair<std::uint32_t, double>> variation_settings;  ///< font-variation-settings (tag, value)
   double letter_spacing = 0, word_spacing = 0;  ///< px, or percent when the flag below is set
   bool letter_spacing_percent = false, word_spacing_percent = false;  ///< of the viewport (like SVG lengths)
   TextAnchor anchor = TextAnchor::Start;

@@ -15,7 +15,8 @@ constexpr std::string_view kTextProperties[] = {
     "font",          "font-family",        "font-size",          "font-weight",       "font-style",
     "font-stretch",  "font-variant",       "font-kerning",       "font-feature-settings", "letter-spacing",
     "word-spacing",  "text-anchor",        "direction",          "writing-mode",      "dominant-baseline",
-    "alignment-baseline", "baseline-shift", "text-decoration",   "font-variant-caps", "kerning"};
+    "alignment-baseline", "baseline-shift", "text-decoration",   "font-variant-caps", "kerning",
+    "font-variation-settings"};
 
 std::vector<std::string_view> split_words(std::string_view v) {
   std::vector<std::string_view> out;
@@ -169,6 +170,33 @@ bool parse_feature_settings(std::string_view v, std::string& out) {
   return true;
 }
 
+/// font-variation-settings: normal | "tag" number, ...
+bool parse_variation_settings(std::string_view v, std::vector<std::pair<std::uint32_t, double>>& out) {
+  std::vector<std::pair<std::uint32_t, double>> list;
+  if (v != "normal") {
+    std::size_t i = 0;
+    while (i < v.size()) {
+      while (i < v.size() && (is_wsp(v[i]) || v[i] == ',')) ++i;
+      if (i >= v.size()) break;
+      if (v[i] != '"' && v[i] != '\'') return false;
+      const std::size_t close = v.find(v[i], i + 1);
+      if (close == std::string_view::npos || close - i - 1 != 4) return false;
+      std::uint32_t tag = 0;
+      for (std::size_t k = i + 1; k < close; ++k) tag = tag << 8 | static_cast<unsigned char>(v[k]);
+      i = close + 1;
+      const std::size_t end = std::min(v.find(',', i), v.size());
+      const std::string_view number = trim(v.substr(i, end - i));
+      std::size_t pos = 0;
+      double d = 0;
+      if (scan_number(number, pos, d) != NumberScan::Ok || pos != number.size() || !std::isfinite(d)) return false;
+      list.emplace_back(tag, d);
+      i = end;
+    }
+  }
+  out = std::move(list);
+  return true;
+}
+
 bool parse_baseline(std::string_view v, Baseline& out) {
   static constexpr std::pair<std::string_view, Baseline> kKeywords[] = {
       {"auto", Baseline::Auto},
@@ -232,7 +260,7 @@ bool apply_font_shorthand(std::string_view v, TextProperties& s, const TextPrope
 bool is_text_attribute(std::string_view name) {
   // CSS-only: no presentation attribute of that name exists.
   return is_text_property(name) && name != "font-kerning" && name != "font-feature-settings" &&
-         name != "font-variant-caps";
+         name != "font-variant-caps" && name != "font-variation-settings";
 }
 
 bool is_text_property(std::string_view name) {
@@ -266,6 +294,7 @@ bool apply_text_property(std::string_view name, std::string_view v, TextProperti
     s.kerning = d != 0;
     return true;
   }
+  if (name == "font-variation-settings") return parse_variation_settings(v, s.variation_settings);
   if (name == "font-feature-settings") return parse_feature_settings(v, s.feature_settings);
   if (name == "letter-spacing" || name == "word-spacing") {
     double d = 0;
@@ -347,6 +376,7 @@ void inherit_text_property(std::string_view name, TextProperties& s, const TextP
   else if (name == "font-variant" || name == "font-variant-caps") s.small_caps = p.small_caps;
   else if (name == "font-kerning" || name == "kerning") s.kerning = p.kerning;
   else if (name == "font-feature-settings") s.feature_settings = p.feature_settings;
+  else if (name == "font-variation-settings") s.variation_settings = p.variation_settings;
   else if (name == "letter-spacing") {
     s.letter_spacing = p.letter_spacing;
     s.letter_spacing_percent = p.letter_spacing_percent;

@@ -1,4 +1,5 @@
 // Fonts: FreeType faces (outlines) and HarfBuzz fonts (shaping) over the same bytes.
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -7,6 +8,7 @@
 
 #include "font_impl.hpp"
 #include <hb-ot.h>
+#include FT_MULTIPLE_MASTERS_H
 #include FT_OUTLINE_H
 #include FT_TRUETYPE_TABLES_H
 #include FT_TRUETYPE_TAGS_H
@@ -233,6 +235,35 @@ FontMetrics Font::metrics(double size) const {
   hb_font_get_h_extents(impl_->hb, &ext);
   const double s = size / units_per_em();
   return {-ext.ascender * s, -ext.descender * s, ext.line_gap * s};
+}
+
+bool Font::is_variable() const { return FT_HAS_MULTIPLE_MASTERS(impl_->face); }
+
+bool Font::set_variations(std::span<const FontVariation> values) {
+  const FT_Face face = impl_->face;
+  if (!FT_HAS_MULTIPLE_MASTERS(face)) return false;
+  FT_MM_Var* mm = nullptr;
+  if (FT_Get_MM_Var(face, &mm) != 0 || !mm) return false;
+  std::vector<FT_Fixed> coords(mm->num_axis);
+  std::vector<hb_variation_t> hb;
+  for (FT_UInt i = 0; i < mm->num_axis; ++i) {
+    const FT_Var_Axis& axis = mm->axis[i];
+    const double lo = axis.minimum / 65536.0, hi = axis.maximum / 65536.0;
+    double v = axis.def / 65536.0;
+    for (const FontVariation& fv : values) {
+      if (fv.tag == axis.tag && std::isfinite(fv.value)) v = fv.value;
+    }
+    v = std::clamp(v, std::min(lo, hi), std::max(lo, hi));
+    coords[i] = static_cast<FT_Fixed>(std::lround(v * 65536.0));
+    hb.push_back(hb_variation_t{static_cast<hb_tag_t>(axis.tag), static_cast<float>(v)});
+  }
+  FT_Done_MM_Var(impl_->library, mm);
+  if (FT_Set_Var_Design_Coordinates(face, static_cast<FT_UInt>(coords.size()), coords.data()) != 0) return false;
+  hb_font_set_variations(impl_->hb, hb.data(), static_cast<unsigned>(hb.size()));
+  impl_->outlines.clear();
+  impl_->sized_at = -1;
+  impl_->id = next_font_id.fetch_add(1);
+  return true;
 }
 
 bool Font::has_substitution_feature(std::string_view tag) const {

@@ -45,6 +45,7 @@ FaceInfo describe(FT_Face face, const std::string& path, int index) {
   info.family = face->family_name ? face->family_name : "";
   info.slant = (face->style_flags & FT_STYLE_FLAG_ITALIC) ? FontSlant::Italic : FontSlant::Normal;
   info.weight = (face->style_flags & FT_STYLE_FLAG_BOLD) ? 700 : 400;
+  info.variable = FT_HAS_MULTIPLE_MASTERS(face);
   if (const auto* os2 = static_cast<const TT_OS2*>(FT_Get_Sfnt_Table(face, FT_SFNT_OS2))) {
     if (os2->version != 0xFFFF) {
       if (os2->usWeightClass >= 1 && os2->usWeightClass <= 1000) info.weight = os2->usWeightClass;
@@ -176,7 +177,7 @@ std::size_t FontDb::add_system_fonts() {
   if (!system_->config) return 0;
   FcPattern* pattern = FcPatternCreate();
   FcObjectSet* objects = FcObjectSetBuild(FC_FAMILY, FC_FILE, FC_INDEX, FC_WEIGHT, FC_SLANT, FC_WIDTH,
-                                          FC_OUTLINE, nullptr);
+                                          FC_OUTLINE, FC_VARIABLE, nullptr);
   FcFontSet* set = FcFontList(system_->config, pattern, objects);
   std::size_t added = 0;
   for (int i = 0; set && i < set->nfont && faces_.size() < kMaxFaces; ++i) {
@@ -203,6 +204,9 @@ std::size_t FontDb::add_system_fonts() {
     info.slant = slant == FC_SLANT_ITALIC ? FontSlant::Italic : slant == FC_SLANT_OBLIQUE ? FontSlant::Oblique
                                                                                         : FontSlant::Normal;
     info.stretch = std::clamp(static_cast<double>(width), 50.0, 200.0);
+    FcBool variable = FcFalse;
+    FcPatternGetBool(p, FC_VARIABLE, 0, &variable);
+    info.variable = variable;
     if (system_->by_file.count({info.path, index})) continue;
     system_->by_file[{info.path, index}] = static_cast<int>(faces_.size());
     faces_.push_back(std::move(info));
@@ -307,7 +311,44 @@ int FontDb::match_index(const FontQuery& query) {
 
 std::shared_ptr<Font> FontDb::match(const FontQuery& query) {
   const int i = match_index(query);
-  return i < 0 ? nullptr : load(i);
+  if (i < 0) return nullptr;
+  if (faces_[static_cast<std::size_t>(i)].variable) {
+    if (std::shared_ptr<Font> f = instance(i, query)) return f;
+  }
+  return load(i);
+}
+
+/// A variable face at the axes the query implies: wght from the weight, wdth from the stretch, slnt / ital from
+/// the slant (CSS Fonts 4, "font-optical-sizing" aside), then font-variation-settings over them. One Font per
+/// distinct setting (each has its own outline cache).
+std::shared_ptr<Font> FontDb::instance(int index, const FontQuery& query) {
+  std::vector<FontVariation> axes = {
+      {FontVariation::make_tag("wght"), static_cast<double>(query.weight)},
+      {FontVariation::make_tag("wdth"), query.stretch},
+      {FontVariation::make_tag("slnt"), query.slant == FontSlant::Oblique ? -14.0 : 0.0},
+      {FontVariation::make_tag("ital"), query.slant == FontSlant::Italic ? 1.0 : 0.0}};
+  if (query.optical_size > 0) axes.push_back({FontVariation::make_tag("opsz"), query.optical_size});
+  for (const FontVariation& v : query.variations) {
+    const auto same = std::find_if(axes.begin(), axes.end(), [&](const FontVariation& a) { return a.tag == v.tag; });
+    if (same != axes.end()) same->value = v.value;
+    else axes.push_back(v);
+  }
+  std::string key;
+  for (const FontVariation& v : axes) key += std::to_string(v.tag) + "=" + std::to_string(v.value) + ",";
+  const auto found = instances_.find({index, key});
+  if (found != instances_.end()) return found->second;
+  if (instances_.size() >= 256) instances_.clear();  // bounded: a document cannot pile up font copies
+  const FaceInfo& face = faces_[static_cast<std::size_t>(index)];
+  std::shared_ptr<Font> font;
+  try {
+    font = face.path.empty() ? Font::load_default() : Font::load_file(face.path, face.index);
+  } catch (const Error& e) {
+    warnings_.push_back(e.what());
+    return nullptr;
+  }
+  font->set_variations(axes);
+  instances_[{index, key}] = font;
+  return font;
 }
 
 bool FontDb::face_has(int index, char32_t c) {

@@ -50,6 +50,17 @@ struct DecorationMetrics {
   double cap_height = 0;           ///< top of a capital (negative)
 };
 
+/// One axis value of a variable font ("wght" 700).
+struct FontVariation {
+  std::uint32_t tag = 0;  ///< four ASCII characters, big-endian ('w' << 24 | 'g' << 16 | 'h' << 8 | 't')
+  double value = 0;
+  static std::uint32_t make_tag(std::string_view four) {
+    std::uint32_t t = 0;
+    for (std::size_t i = 0; i < 4; ++i) t = t << 8 | static_cast<unsigned char>(i < four.size() ? four[i] : ' ');
+    return t;
+  }
+};
+
 /// A glyph's unhinted outline in font units (see Font::outline_units) and the box of all its points, control
 /// points included (its Path::control_bounds(), computed once).
 struct GlyphOutline {
@@ -93,6 +104,12 @@ class Font {
   /// The glyph for a Unicode code point, 0 (.notdef) when the font has none.
   std::uint32_t glyph_index(char32_t codepoint) const;
   bool has_glyph(char32_t codepoint) const { return glyph_index(codepoint) != 0; }
+  /// Whether the font has variation axes (an OpenType variable font).
+  bool is_variable() const;
+  /// Sets a variable font's design coordinates: the axes named take those values (clamped to the axis's range),
+  /// the others their defaults; axes the font lacks are ignored. Outlines, advances and shaping follow. Clears the
+  /// font's outline cache and gives it a new id(). Returns false (and changes nothing) for a font without axes.
+  bool set_variations(std::span<const FontVariation> values);
   /// Whether the font's GSUB table has a feature with this tag ("smcp", "liga", ...).
   bool has_substitution_feature(std::string_view tag) const;
 

@@ -24,6 +24,10 @@ struct FontQuery {
   int weight = 400;                   ///< 1..1000 (normal 400, bold 700)
   FontSlant slant = FontSlant::Normal;
   double stretch = 100;               ///< percent of normal width, 50..200
+  /// Axis values for a variable font (font-variation-settings); they override the ones weight, stretch and slant
+  /// set on such a font (wght, wdth, slnt, ital).
+  std::vector<FontVariation> variations;
+  double optical_size = 0;  ///< px: sets the opsz axis of a variable font (CSS font-optical-sizing: auto); 0: not
 };
 
 /// One face the database knows (not loaded until a query picks it).
@@ -35,6 +39,7 @@ struct FaceInfo {
   FontSlant slant = FontSlant::Normal;
   double stretch = 100;
   bool system = false;  ///< found through fontconfig
+  bool variable = false;  ///< has variation axes
 };
 
 /// The generic families CSS names.
@@ -91,6 +96,8 @@ class FontDb {
   std::array<std::string, 5> generic_;
   std::string default_family_ = "serif";
   std::map<char32_t, int> fallback_cache_;     // code point -> face index (-1: none)
+  std::map<std::pair<int, std::string>, std::shared_ptr<Font>> instances_;  // variable faces at given axes
+  std::shared_ptr<Font> instance(int index, const FontQuery& query);
   std::vector<std::string> warnings_;
   struct SystemIndex;
   std::unique_ptr<SystemIndex> system_;        // fontconfig's charset lookups for system faces
