@@ -27,6 +27,7 @@ namespace {
 
 constexpr std::size_t kMaxChars = 1 << 20;  // characters per text element (more are dropped with a warning)
 constexpr double kMaxShapeSize = text::kMaxFontSize;
+constexpr double kVerticalReach = 1e7;  // half the length of the line a vertical chunk is laid out on
 constexpr double kShapeSize = 1000;  // px per em runs are shaped at (positions are then scaled per glyph)
 
 struct Element {
@@ -477,6 +478,11 @@ class TextBuilder {
     last_key_.clear();
     const TextProperties& chunk_style = element(first.element).style.text;
     if (chunk_style.rtl) std::reverse(runs.begin(), runs.end());
+    // Vertical writing modes: the chunk is laid out as on a path going down from its start, glyphs turned
+    // sideways (upright CJK is not done yet), centred on the line (the central baseline).
+    vertical_ = path < 0 && element(0).style.text.vertical;  // writing-mode applies to <text> only
+    const Point origin = pen;
+    if (vertical_) pen = Point{0, 0};
     const std::size_t chunk_first_glyph = placed_.size();
     const double start_x = pen.x;
     for (const Run& run : runs) shape_and_place(run, chunk, pen);
@@ -499,7 +505,16 @@ class TextBuilder {
     const double shift = anchor == TextAnchor::Middle ? -width / 2 : anchor == TextAnchor::End ? -width : 0;
     for (std::size_t g = chunk_first_glyph; g < placed_.size(); ++g) placed_[g].x += shift;
     pen.x += shift;
-    if (path >= 0) {
+    if (vertical_) {
+      TextPath down;
+      down.points = {Point{origin.x, origin.y - kVerticalReach}, Point{origin.x, origin.y + kVerticalReach}};
+      down.length = {0, 2 * kVerticalReach};
+      down.start_offset = kVerticalReach;
+      for (std::size_t g = chunk_first_glyph; g < placed_.size(); ++g)
+        placed_[g].y -= baseline_line(placed_[g].element, Baseline::Central);
+      place_on_path(down, chunk_first_glyph);
+      pen = Point{origin.x, origin.y + pen.x};
+    } else if (path >= 0) {
       const TextPath& tp = paths_[static_cast<std::size_t>(path)];
       place_on_path(tp, chunk_first_glyph);
       // Text after the textPath goes on from where its last character ended on the path.
@@ -582,7 +597,10 @@ class TextBuilder {
       const Char& ch = chars_[ci];
       const double size = char_size(ci);
       const double ratio = size > 0 ? size / kShapeSize : 0;
-      if (cluster_start) {
+      if (cluster_start && vertical_) {  // dy runs along the line, dx across it
+        pen.x += ch.dy;
+        pen.y -= ch.dx;
+      } else if (cluster_start) {
         pen.x += ch.dx;
         pen.y += ch.dy;
       }
@@ -803,6 +821,7 @@ class TextBuilder {
   std::map<int, double> baseline_cache_;
   std::map<int, bool> smcp_cache_;
   std::map<int, std::string> key_cache_;
+  bool vertical_ = false;  // the chunk being laid out is vertical
   std::string last_key_;
   bool last_space_ = true;  // strips leading white space (xml:space default)
   bool last_collapsible_ = false;
