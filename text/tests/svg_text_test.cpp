@@ -5,10 +5,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "svg_subset/tree.hpp"
 #include "text_support.hpp"
+#include "vraster/error.hpp"
 #include "vraster_text/font_db.hpp"
 #include "vraster_text/layout.hpp"
 
@@ -237,6 +240,38 @@ TEST(SvgText, WhiteSpaceIsCollapsedUnlessPreserved) {
   const double space = advance(*font, ' ', 20);
   const Rect kept = box("<text x='10' y='100' xml:space='preserve' font-family='Noto Sans' font-size='20'>\n A B</text>");
   EXPECT_NEAR(kept.x0, plain.x0 + 2 * space, 1e-6);
+}
+
+TEST(SvgText, BrokenFontFilesAreSkippedWithAWarning) {
+  const std::string dir = testing::out_dir() + "/broken_fonts";
+  std::filesystem::create_directories(dir);
+  {
+    std::FILE* f = std::fopen((dir + "/garbage.ttf").c_str(), "wb");
+    ASSERT_NE(f, nullptr);
+    std::fputs("not a font at all, just some bytes", f);
+    std::fclose(f);
+  }
+  std::filesystem::copy_file(system_font(kNotoSans), dir + "/NotoSans-Regular.ttf",
+                             std::filesystem::copy_options::overwrite_existing);
+  FontDb db;
+  EXPECT_EQ(db.add_directory(dir), 1u);  // the good font only
+  ASSERT_EQ(db.warnings().size(), 1u);
+  EXPECT_NE(db.warnings()[0].find("garbage.ttf"), std::string::npos) << db.warnings()[0];
+  EXPECT_THROW(db.add_directory(dir + "/no-such-dir"), Error);
+}
+
+TEST(SvgText, SystemFontsCoverWhatTheGivenFontsLack) {
+  // The same fallback `vraster text` uses: fontconfig's fonts for the Arabic a Latin font lacks.
+  system_font(kAmiri);  // fonts-hosny-amiri must be installed for fontconfig to have an Arabic font
+  FontDb db;
+  db.add_file(system_font(kNotoSerif));
+  ASSERT_GT(db.add_system_fonts(), 0u);
+  FontQuery q;
+  q.families = {"Noto Serif"};
+  const FontList list = db.fonts_for(q, U"Hello مرحبا");
+  ASSERT_GE(list.fonts.size(), 2u);
+  EXPECT_EQ(list.fonts[0]->family_name(), "Noto Serif");
+  EXPECT_TRUE(list.fonts[1]->has_glyph(U'م'));
 }
 
 TEST(SvgText, HostileValuesAreBounded) {
