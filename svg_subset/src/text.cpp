@@ -123,7 +123,8 @@ class TextBuilder {
   TextBuilder(TextHost& host, text::FontDb& fonts) : host_(host), fonts_(fonts) {}
 
   void build(pugi::xml_node text, const SpanStyle& style, Group& out) {
-    elements_.push_back(Element{style, -1, 0, 0, -1});
+    elements_.push_back(Element{});
+    elements_.back().style = style;
     read_lists(text, 0);
     collect(text, 0, preserve_of(text, false));
     elements_[0].end = static_cast<std::uint32_t>(chars_.size());
@@ -238,8 +239,12 @@ class TextBuilder {
       const std::optional<SpanStyle> style = host_.enter(child);
       if (!style) continue;
       const int index = static_cast<int>(elements_.size());
-      elements_.push_back(Element{*style, element, static_cast<std::uint32_t>(chars_.size()), 0, path});
-      elements_.back().dropped = dropped;
+      Element& el = elements_.emplace_back();
+      el.style = *style;
+      el.parent = element;
+      el.begin = static_cast<std::uint32_t>(chars_.size());
+      el.path = path;
+      el.dropped = dropped;
       if (name != "textPath") read_lists(child, index);
       const bool child_preserve = preserve_of(child, preserve);
       if (name == "tref") {
@@ -350,12 +355,23 @@ class TextBuilder {
   /// scale with it, so a run is shaped once at kShapeSize and each glyph scaled to its own element's size (kerning
   /// and joining work across tspans of different sizes).
   static std::string shaping_key(const TextProperties& t) {
+    // Appended piece by piece (GCC 12 warns falsely about "literal" + std::string temporaries).
     std::string key;
-    for (const std::string& f : t.font_family) key += f + ",";
-    key += "|" + std::to_string(t.font_weight) + "|" + std::to_string(t.font_style) + "|" +
-           std::to_string(t.font_stretch) + "|" + t.feature_settings + "|" + (t.kerning ? "k" : "-") +
-           (t.small_caps ? "s" : "-") + (t.rtl ? "r" : "-") + (t.letter_spacing != 0 ? "l" : "-");
-    for (const auto& [tag, value] : t.variation_settings) key += "|" + std::to_string(tag) + "=" + std::to_string(value);
+    auto field = [&key](const std::string& v) {
+      key += v;
+      key += '|';
+    };
+    for (const std::string& f : t.font_family) field(f);
+    field(std::to_string(t.font_weight));
+    field(std::to_string(t.font_style));
+    field(std::to_string(t.font_stretch));
+    field(t.feature_settings);
+    field(std::string{t.kerning ? 'k' : '-', t.small_caps ? 's' : '-', t.rtl ? 'r' : '-',
+                      t.letter_spacing != 0 ? 'l' : '-'});
+    for (const auto& [tag, value] : t.variation_settings) {
+      field(std::to_string(tag));
+      field(std::to_string(value));
+    }
     return key;
   }
 
@@ -366,7 +382,7 @@ class TextBuilder {
     const TextProperties& t = element(e).style.text;
     std::string key = shaping_key(t);
     const std::shared_ptr<text::Font> f = fonts_.match(query_of(t));
-    if (f && f->is_variable()) key += "|" + std::to_string(t.font_size);
+    if (f && f->is_variable()) key += std::to_string(t.font_size);
     return key_cache_[e] = std::move(key);
   }
 
@@ -449,9 +465,10 @@ class TextBuilder {
 
   void layout() {
     // Chunks: boundaries at absolute positions and textPath starts.
+    std::sort(path_starts_.begin(), path_starts_.end());
     std::vector<std::uint32_t> starts{0};
     for (std::uint32_t i = 1; i < chars_.size(); ++i) {
-      const bool path_start = std::find(path_starts_.begin(), path_starts_.end(), i) != path_starts_.end();
+      const bool path_start = std::binary_search(path_starts_.begin(), path_starts_.end(), i);
       const bool path_change = element(chars_[i].element).path != element(chars_[i - 1].element).path;
       if (chars_[i].x || chars_[i].y || path_start || path_change) starts.push_back(i);
     }
@@ -488,9 +505,17 @@ class TextBuilder {
     for (const Run& run : runs) shape_and_place(run, chunk, pen);
     // textLength: innermost elements first (they come later in elements_).
     // An element that spans several chunks keeps its natural length (as resvg does).
-    for (std::size_t e = elements_.size(); e-- > 0;) {
-      if (elements_[e].text_length && elements_[e].begin >= begin && elements_[e].end <= end)
-        fit_length(static_cast<int>(e), chunk_first_glyph, pen);
+    // Elements are in document order, so their first characters never decrease: those starting in this chunk
+    // are one stretch of elements_.
+    const auto from = std::lower_bound(elements_.begin(), elements_.end(), begin,
+                                       [](const Element& el, std::uint32_t v) { return el.begin < v; });
+    const auto to = std::lower_bound(from, elements_.end(), end,
+                                     [](const Element& el, std::uint32_t v) { return el.begin < v; });
+    index_glyphs(chunk_first_glyph);
+    for (auto it = to; it != from;) {
+      --it;
+      if (it->text_length && it->end <= end && it->end > it->begin)
+        fit_length(static_cast<int>(it - elements_.begin()), pen);
     }
     // text-anchor (start is the right end in right-to-left text).
     // The chunk's width: its advance without the letter-spacing after its last character.
@@ -524,14 +549,31 @@ class TextBuilder {
 
   /// textLength on element e: its glyphs in this chunk spaced (or stretched) to span exactly that length; the
   /// glyphs after them move along.
-  void fit_length(int e, std::size_t first, Point& pen) {
-    std::size_t begin = placed_.size(), end = first;
-    for (std::size_t g = first; g < placed_.size(); ++g) {
-      if (!is_inside(placed_[g].element, e)) continue;
-      begin = std::min(begin, g);
-      end = g + 1;
-    }
-    if (begin >= end) return;
+  /// Sorts placed_[first..] by character (by_char_), so the glyphs of an element are found by its character range.
+  void index_glyphs(std::size_t first) {
+    by_char_.clear();
+    for (std::size_t g = first; g < placed_.size(); ++g) by_char_.push_back(g);
+    std::stable_sort(by_char_.begin(), by_char_.end(),
+                     [&](std::size_t a, std::size_t b) { return placed_[a].ch < placed_[b].ch; });
+  }
+
+  /// The glyphs (indices into placed_, in placed_ order) of element e's characters, among those index_glyphs
+  /// sorted.
+  std::vector<std::size_t> glyphs_of(int e) const {
+    const Element& el = element(e);
+    const auto lo = std::lower_bound(by_char_.begin(), by_char_.end(), el.begin,
+                                     [&](std::size_t g, std::uint32_t v) { return placed_[g].ch < v; });
+    const auto hi = std::lower_bound(lo, by_char_.end(), el.end,
+                                     [&](std::size_t g, std::uint32_t v) { return placed_[g].ch < v; });
+    std::vector<std::size_t> out(lo, hi);
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+  void fit_length(int e, Point& pen) {
+    const std::vector<std::size_t> mine = glyphs_of(e);
+    if (mine.empty()) return;
+    const std::size_t begin = mine.front(), end = mine.back() + 1;  // glyphs of one chunk, in a row
     const double x0 = placed_[begin].x;
     const double width = placed_[end - 1].x + placed_[end - 1].advance * placed_[end - 1].stretch - x0;
     const double target = *element(e).text_length;
@@ -685,13 +727,6 @@ class TextBuilder {
     return n;
   }
 
-  bool is_inside(int e, int ancestor) const {
-    for (int i = e; i >= 0; i = element(i).parent) {
-      if (i == ancestor) return true;
-    }
-    return false;
-  }
-
   /// Rectangles of one decoration of element `e` (underline, overline or line-through), one per stretch of its
   /// glyphs on one baseline of one chunk.
   Path decoration(int e, std::uint8_t kind) {
@@ -718,11 +753,11 @@ class TextBuilder {
       if (current && current->width() > 0) out.add_rect(*current);
       current.reset();
     };
-    for (const Placed& p : placed_) {
-      if (!is_inside(p.element, e)) {
-        flush();
-        continue;
-      }
+    std::size_t previous = placed_.size();
+    for (const std::size_t g : glyphs_of(e)) {
+      const Placed& p = placed_[g];
+      if (g != previous + 1) flush();  // another element's glyphs came between
+      previous = g;
       if (p.on_path) {  // along a path: one rectangle per glyph, turned with it
         Path r;
         r.add_rect(Rect{0, centre - thickness / 2 - p.y, p.advance, centre + thickness / 2 - p.y});
@@ -784,6 +819,7 @@ class TextBuilder {
     flush();
     // Decorations: from each element that declares one, with that element's paint.
     std::vector<PathNode> below, above;
+    index_glyphs(0);
     for (std::size_t e = 0; e < elements_.size(); ++e) {
       // Decorations of elements around <text> are drawn as the text's own (with its paint).
       const TextProperties& t = elements_[e].style.text;
@@ -817,6 +853,7 @@ class TextBuilder {
   std::vector<TextPath> paths_;
   std::vector<std::uint32_t> path_starts_;
   std::vector<Placed> placed_;
+  std::vector<std::size_t> by_char_;  // glyph indices sorted by character (index_glyphs)
   std::vector<std::shared_ptr<text::Font>> keep_fonts_;  // the fonts placed_ points to stay alive
   std::map<int, double> baseline_cache_;
   std::map<int, bool> smcp_cache_;

@@ -17,6 +17,7 @@ namespace {
 
 constexpr std::size_t kMaxFaces = 100'000;  // faces from all sources together
 constexpr int kMaxFacesPerFile = 256;
+constexpr std::size_t kMaxFallbackLookups = 20'000;  // distinct code points searched for in other fonts
 
 std::string lower(std::string_view s) {
   std::string out(s);
@@ -369,6 +370,8 @@ FontList FontDb::fonts_for(const FontQuery& query, std::u32string_view text) {
     int found = -1;
     if (const auto cached = fallback_cache_.find(c); cached != fallback_cache_.end()) {
       found = cached->second;
+    } else if (fallback_cache_.size() >= kMaxFallbackLookups) {
+      continue;  // bounded work: a text of a million distinct characters does not query a million times
     } else {
       // The query's own families (other styles of them), then the files and directories given, then the system.
       std::vector<int> order;
