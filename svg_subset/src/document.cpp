@@ -1297,6 +1297,7 @@ class Builder {
       return b_.parse_length(value, axis == 0 ? Axis::X : axis == 1 ? Axis::Y : Axis::Other, out);
     }
     std::pair<int, int> position(pugi::xml_node node) override { return b_.lines_.position(b_.element_offset(node)); }
+    bool take_character() override { return ++b_.text_characters_ <= detail::kMaxTextCharacters; }
 
    private:
     Builder& b_;
@@ -1580,6 +1581,7 @@ class Builder {
   LineIndex lines_;
   const TreeOptions& options_;
   std::shared_ptr<text::FontDb> fonts_;  // options_.fonts, or the embedded font alone
+  std::size_t text_characters_ = 0;      // laid out so far (detail::kMaxTextCharacters)
   std::string buffer_;  // the private copy pugixml parses in place
   pugi::xml_document xml_;
   Tree tree_;

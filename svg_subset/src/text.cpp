@@ -25,7 +25,7 @@
 namespace vraster::svg::detail {
 namespace {
 
-constexpr std::size_t kMaxChars = 1 << 20;  // characters per text element (more are dropped with a warning)
+constexpr std::size_t kMaxChars = kMaxTextCharacters;  // per text element (and list values per attribute)
 constexpr double kMaxShapeSize = text::kMaxFontSize;
 constexpr double kVerticalReach = 1e7;  // half the length of the line a vertical chunk is laid out on
 constexpr double kShapeSize = 1000;  // px per em runs are shaped at (positions are then scaled per glyph)
@@ -168,8 +168,10 @@ class TextBuilder {
 
   void add_text(std::string_view utf8, int element, bool preserve) {
     for (char32_t c : text::decode_utf8(utf8)) {
-      if (chars_.size() >= kMaxChars) {
-        if (!warned_size_) host_.warn(text_node_, "text longer than " + std::to_string(kMaxChars) + " characters, cut");
+      if (chars_.size() >= kMaxChars || !host_.take_character()) {
+        if (!warned_size_)
+          host_.warn(text_node_, "too much text (the limit is " + std::to_string(kMaxTextCharacters) +
+                                     " characters per document), the rest is cut");
         warned_size_ = true;
         return;
       }

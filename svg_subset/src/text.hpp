@@ -62,6 +62,10 @@ struct TextProperties {
   }
 };
 
+/// Characters of text one document may lay out (all its text elements together): each becomes a glyph outline
+/// in the tree, about a kilobyte with its share of the drawing, so this bounds memory and time.
+inline constexpr std::size_t kMaxTextCharacters = std::size_t{1} << 18;
+
 /// Whether `name` is a text property (or the `font` shorthand) handled by apply_text_property.
 bool is_text_property(std::string_view name);
 /// Whether `name` is a text property that may also be given as a presentation attribute.
@@ -98,6 +102,8 @@ class TextHost {
   /// Parses a length (percentages against the viewport on `axis`: 0 x, 1 y, 2 other); false when invalid.
   virtual bool length(std::string_view value, int axis, double& out) = 0;
   virtual std::pair<int, int> position(pugi::xml_node node) = 0;  ///< line and column
+  /// Counts one character against the document's text budget (kMaxTextCharacters); false once it is spent.
+  virtual bool take_character() = 0;
 };
 
 /// A font database holding only the embedded default font (for documents read without TreeOptions::fonts).

@@ -138,6 +138,7 @@ std::size_t FontDb::add_file(const std::string& path) {
   loaded_.resize(faces_.size());
   broken_.resize(faces_.size());
   fallback_cache_.clear();
+  match_cache_.clear();
   return added;
 }
 
@@ -170,6 +171,7 @@ void FontDb::add_embedded_default() {
   loaded_.push_back(font);
   broken_.push_back(false);
   fallback_cache_.clear();
+  match_cache_.clear();
 }
 
 std::size_t FontDb::add_system_fonts() {
@@ -236,14 +238,19 @@ std::size_t FontDb::add_system_fonts() {
   loaded_.resize(faces_.size());
   broken_.resize(faces_.size());
   fallback_cache_.clear();
+  match_cache_.clear();
   return added;
 }
 
 void FontDb::set_generic_family(GenericFamily generic, std::string family) {
   generic_[static_cast<std::size_t>(generic)] = std::move(family);
+  match_cache_.clear();
 }
 
-void FontDb::set_default_family(std::string family) { default_family_ = std::move(family); }
+void FontDb::set_default_family(std::string family) {
+  default_family_ = std::move(family);
+  match_cache_.clear();
+}
 
 std::vector<int> FontDb::family_candidates(std::string_view family) const {
   std::string name(family);
@@ -283,6 +290,7 @@ std::shared_ptr<Font> FontDb::load(int index) {
     loaded_[i] = Font::load_file(faces_[i].path, faces_[i].index);
   } catch (const Error& e) {
     broken_[i] = true;
+    match_cache_.clear();  // matches may have picked this face
     warnings_.push_back(e.what());
     return nullptr;
   }
@@ -290,6 +298,22 @@ std::shared_ptr<Font> FontDb::load(int index) {
 }
 
 int FontDb::match_index(const FontQuery& query) {
+  std::string key;
+  for (const std::string& f : query.families) {
+    key += f;
+    key += '\n';
+  }
+  key += std::to_string(query.weight);
+  key += ' ';
+  key += std::to_string(static_cast<int>(query.slant));
+  key += ' ';
+  key += std::to_string(query.stretch);
+  if (const auto it = match_cache_.find(key); it != match_cache_.end()) return it->second;
+  if (match_cache_.size() >= 4096) match_cache_.clear();
+  return match_cache_[key] = match_uncached(query);
+}
+
+int FontDb::match_uncached(const FontQuery& query) {
   // A face that fails to load is marked broken and the match is tried again without it.
   for (int attempt = 0; attempt < 64; ++attempt) {
     int found = -1;

@@ -85,6 +85,7 @@ class FontDb {
   FontList fonts_for(const FontQuery& query, std::u32string_view text);
 
  private:
+  int match_uncached(const FontQuery& query);
   int best_of(const std::vector<int>& candidates, const FontQuery& query) const;
   std::vector<int> family_candidates(std::string_view family) const;
   std::shared_ptr<Font> load(int index);
@@ -96,6 +97,7 @@ class FontDb {
   std::array<std::string, 5> generic_;
   std::string default_family_ = "serif";
   std::map<char32_t, int> fallback_cache_;     // code point -> face index (-1: none)
+  std::map<std::string, int> match_cache_;     // query -> match_index
   std::map<std::pair<int, std::string>, std::shared_ptr<Font>> instances_;  // variable faces at given axes
   std::shared_ptr<Font> instance(int index, const FontQuery& query);
   std::vector<std::string> warnings_;
