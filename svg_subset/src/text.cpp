@@ -724,7 +724,7 @@ class TextBuilder {
     n.fill = s.fill;
     n.stroke = s.stroke;
     n.stroke_first = s.stroke_first;
-    n.crisp_edges = s.crisp_edges;
+    n.crisp_edges = s.crisp_edges || element(0).style.text.speed;  // text-rendering applies to <text> only
     std::tie(n.line, n.column) = host_.position(text_node_);
     return n;
   }

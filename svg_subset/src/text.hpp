@@ -41,6 +41,7 @@ struct TextProperties {
   TextAnchor anchor = TextAnchor::Start;
   bool rtl = false;                      ///< direction
   bool vertical = false;                 ///< writing-mode tb / vertical-*
+  bool speed = false;                    ///< text-rendering: optimizeSpeed (glyphs drawn aliased)
   Baseline dominant_baseline = Baseline::Auto;
   std::uint8_t ancestor_decoration = 0;  ///< text-decoration of the ancestors (drawn as if set on <text>)
   // Not inherited.

@@ -16,7 +16,7 @@ constexpr std::string_view kTextProperties[] = {
     "font-stretch",  "font-variant",       "font-kerning",       "font-feature-settings", "letter-spacing",
     "word-spacing",  "text-anchor",        "direction",          "writing-mode",      "dominant-baseline",
     "alignment-baseline", "baseline-shift", "text-decoration",   "font-variant-caps", "kerning",
-    "font-variation-settings"};
+    "font-variation-settings", "text-rendering"};
 
 std::vector<std::string_view> split_words(std::string_view v) {
   std::vector<std::string_view> out;
@@ -304,6 +304,11 @@ bool apply_text_property(std::string_view name, std::string_view v, TextProperti
     (name == "letter-spacing" ? s.letter_spacing_percent : s.word_spacing_percent) = percent;
     return true;
   }
+  if (name == "text-rendering") {
+    if (v != "auto" && v != "optimizeSpeed" && v != "optimizeLegibility" && v != "geometricPrecision") return false;
+    s.speed = v == "optimizeSpeed";
+    return true;
+  }
   if (name == "text-anchor") {
     if (v == "start") s.anchor = TextAnchor::Start;
     else if (v == "middle") s.anchor = TextAnchor::Middle;
@@ -387,6 +392,7 @@ void inherit_text_property(std::string_view name, TextProperties& s, const TextP
   else if (name == "text-anchor") s.anchor = p.anchor;
   else if (name == "direction") s.rtl = p.rtl;
   else if (name == "writing-mode") s.vertical = p.vertical;
+  else if (name == "text-rendering") s.speed = p.speed;
   else if (name == "dominant-baseline") s.dominant_baseline = p.dominant_baseline;
   else if (name == "alignment-baseline") s.alignment_baseline = p.alignment_baseline;
   else if (name == "baseline-shift") {
