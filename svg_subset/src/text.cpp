@@ -581,6 +581,7 @@ class TextBuilder {
     const double target = *element(e).text_length;
     if (!(width > 0)) return;
     const double diff = target - width;
+    double shift = diff;  // how far the glyphs after the element move
     if (element(e).stretch_glyphs) {
       const double k = target / width;
       for (std::size_t g = begin; g < end; ++g) {
@@ -598,9 +599,12 @@ class TextBuilder {
         placed_[g].x += step * static_cast<double>(k);
       }
       if (clusters <= 1) return;
+      // What follows moves by one more step: the last character gets its share of space after it too (what
+      // resvg's references show).
+      shift += step;
     }
-    for (std::size_t g = end; g < placed_.size(); ++g) placed_[g].x += diff;
-    pen.x += diff;
+    for (std::size_t g = end; g < placed_.size(); ++g) placed_[g].x += shift;
+    pen.x += shift;
   }
 
   void shape_and_place(const Run& run, int chunk, Point& pen) {
