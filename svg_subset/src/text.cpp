@@ -81,7 +81,8 @@ struct Placed {
   double size = 0;
   double x = 0, y = 0;          // pen position (origin on the baseline)
   double advance = 0;
-  double rotate = 0;            // degrees
+  double rotate = 0;            // degrees, about the pen position of the glyph's cluster
+  double ox = 0, oy = 0;        // the glyph's offset from that pen position (marks, ligature parts)
   double stretch = 1;           // horizontal scale (lengthAdjust="spacingAndGlyphs")
   int element = 0;
   std::uint32_t ch = 0;         // first character of its cluster
@@ -145,7 +146,7 @@ class TextBuilder {
     return std::string_view(a.value()) == "preserve";
   }
 
-  void read_lists(pugi::xml_node node, int element) {
+  void read_lists(pugi::xml_node node, int element, bool positions = true) {
     if (const auto a = node.attribute("textLength")) {
       double d = 0;
       if (host_.length(trim(a.value()), 0, d) && d >= 0 && d < 1e9) {
@@ -154,6 +155,7 @@ class TextBuilder {
         e.stretch_glyphs = std::string_view(node.attribute("lengthAdjust").value()) == "spacingAndGlyphs";
       }
     }
+    if (!positions) return;
     Lists l;
     l.element = element;
     const double em = elements_[static_cast<std::size_t>(element)].style.text.font_size;
@@ -247,7 +249,7 @@ class TextBuilder {
       el.begin = static_cast<std::uint32_t>(chars_.size());
       el.path = path;
       el.dropped = dropped;
-      if (name != "textPath") read_lists(child, index);
+      read_lists(child, index, name != "textPath");  // a textPath has textLength but no position lists
       const bool child_preserve = preserve_of(child, preserve);
       if (name == "tref") {
         if (const pugi::xml_node target = host_.href_target(child)) {
@@ -657,8 +659,11 @@ class TextBuilder {
       p.glyph = sg.glyph;
       p.size = size;
       p.x = pen.x + sg.x_offset * ratio;
-      p.y = pen.y + sg.y_offset * ratio + baseline_offset(ch.element);
+      p.y = pen.y - sg.y_offset * ratio + baseline_offset(ch.element);  // HarfBuzz offsets point up
       p.advance = sg.x_advance * ratio;
+      if (cluster_start) cluster_pen_ = pen;
+      p.ox = p.x - cluster_pen_.x;
+      p.oy = p.y - cluster_pen_.y - baseline_offset(ch.element);
       p.rotate = ch.rotate.value_or(0);
       p.element = ch.element;
       p.ch = ci;
@@ -701,12 +706,13 @@ class TextBuilder {
     std::size_t keep = first;
     for (std::size_t g = first; g < placed_.size(); ++g) {
       Placed p = placed_[g];
-      const double mid = tp.start_offset + p.x + p.advance / 2;
+      const double advance = p.advance * p.stretch;
+      const double mid = tp.start_offset + p.x + advance / 2;
       if (!(mid >= 0 && mid <= tp.total())) continue;
       const auto [point, angle] = tp.at(mid);
       p.on_path = true;
       p.path_transform = Affine::translate(point.x, point.y) * Affine::rotate(angle * 180 / std::numbers::pi) *
-                         Affine::translate(-p.advance / 2, p.y) * Affine::rotate(p.rotate);
+                         Affine::translate(-advance / 2, p.y) * Affine::rotate(p.rotate);
       placed_[keep++] = p;
     }
     placed_.resize(keep);
@@ -718,7 +724,8 @@ class TextBuilder {
     const double s = p.size / p.font->units_per_em();
     const Affine scale = Affine::scale(s * p.stretch, s);
     if (p.on_path) return p.path_transform * scale;
-    return Affine::translate(p.x, p.y) * Affine::rotate(p.rotate) * scale;
+    if (p.rotate == 0) return Affine::translate(p.x, p.y) * scale;
+    return Affine::translate(p.x - p.ox, p.y - p.oy) * Affine::rotate(p.rotate) * Affine::translate(p.ox, p.oy) * scale;
   }
 
   PathNode node_for(int e, Path path) {
@@ -865,6 +872,7 @@ class TextBuilder {
   std::map<int, bool> smcp_cache_;
   std::map<int, std::string> key_cache_;
   bool vertical_ = false;  // the chunk being laid out is vertical
+  Point cluster_pen_;      // pen position at the start of the cluster being placed
   std::string last_key_;
   bool last_space_ = true;  // strips leading white space (xml:space default)
   bool last_collapsible_ = false;
