@@ -528,7 +528,6 @@ class TextBuilder {
       const TextProperties& last = element(chars_[end - 1].element).style.text;
       if (!is_cursive(chars_[end - 1].c)) width -= spacing(last.letter_spacing, last.letter_spacing_percent);
     }
-    if (getenv("VT_DEBUG")) fprintf(stderr, "chunk %d [%u,%u) start %g width %g glyphs %zu\n", chunk, begin, end, start_x, width, placed_.size() - chunk_first_glyph);
     TextAnchor anchor = chunk_style.anchor;
     if (chunk_style.rtl && anchor != TextAnchor::Middle) anchor = anchor == TextAnchor::Start ? TextAnchor::End : TextAnchor::Start;
     const double shift = anchor == TextAnchor::Middle ? -width / 2 : anchor == TextAnchor::End ? -width : 0;
