@@ -224,6 +224,24 @@ TEST(SvgText, TextPathPlacesGlyphsAlongAStraightLine) {
   EXPECT_NEAR(paths[0]->path.bounds().x1, glyph_box(*font, 'H', 20, a, 100).x1, 1e-6);
 }
 
+TEST(SvgText, VerticalTextRunsDownWithGlyphsTurnedSideways) {
+  const svg::Tree tree = parse("<text x='100' y='20' writing-mode='tb' font-family='Noto Sans' font-size='20'>"
+                               "H<tspan fill='red'>H</tspan></text>");
+  const auto paths = text_paths(tree);
+  ASSERT_EQ(paths.size(), 2u);
+  const auto font = Font::load_file(system_font(kNotoSans));
+  const double a = advance(*font, 'H', 20);
+  const FontMetrics m = font->metrics(20);
+  const double shift = (m.ascender + m.descender) / 2;  // the central baseline sits on x = 100
+  const Rect upright = glyph_box(*font, 'H', 20, 0, 0);
+  // rotate(90) maps (x, y) to (-y, x): the glyph's top points to +x, its advance runs down.
+  for (int i = 0; i < 2; ++i) {
+    expect_box(paths[static_cast<std::size_t>(i)]->path.bounds(),
+               Rect{100 + shift - upright.y1, 20 + i * a + upright.x0, 100 + shift - upright.y0,
+                    20 + i * a + upright.x1});
+  }
+}
+
 TEST(SvgText, WhiteSpaceIsCollapsedUnlessPreserved) {
   const auto box = [](const std::string& text) {
     const svg::Tree tree = parse(text);
