@@ -139,6 +139,7 @@ std::size_t FontDb::add_file(const std::string& path) {
   broken_.resize(faces_.size());
   fallback_cache_.clear();
   match_cache_.clear();
+  family_cache_.clear();
   return added;
 }
 
@@ -172,6 +173,7 @@ void FontDb::add_embedded_default() {
   broken_.push_back(false);
   fallback_cache_.clear();
   match_cache_.clear();
+  family_cache_.clear();
 }
 
 std::size_t FontDb::add_system_fonts() {
@@ -239,20 +241,30 @@ std::size_t FontDb::add_system_fonts() {
   broken_.resize(faces_.size());
   fallback_cache_.clear();
   match_cache_.clear();
+  family_cache_.clear();
   return added;
 }
 
 void FontDb::set_generic_family(GenericFamily generic, std::string family) {
   generic_[static_cast<std::size_t>(generic)] = std::move(family);
   match_cache_.clear();
+  family_cache_.clear();
 }
 
 void FontDb::set_default_family(std::string family) {
   default_family_ = std::move(family);
   match_cache_.clear();
+  family_cache_.clear();
 }
 
-std::vector<int> FontDb::family_candidates(std::string_view family) const {
+std::vector<int> FontDb::family_candidates(std::string_view family) const {  // a copy: loading may clear the cache
+  const std::string key(family);
+  if (const auto it = family_cache_.find(key); it != family_cache_.end()) return it->second;
+  if (family_cache_.size() >= 4096) family_cache_.clear();
+  return family_cache_[key] = family_candidates_uncached(family);
+}
+
+std::vector<int> FontDb::family_candidates_uncached(std::string_view family) const {
   std::string name(family);
   GenericFamily generic;
   if (parse_generic_family(family, generic)) {
@@ -291,6 +303,7 @@ std::shared_ptr<Font> FontDb::load(int index) {
   } catch (const Error& e) {
     broken_[i] = true;
     match_cache_.clear();  // matches may have picked this face
+    family_cache_.clear();
     warnings_.push_back(e.what());
     return nullptr;
   }
@@ -391,26 +404,26 @@ FontList FontDb::fonts_for(const FontQuery& query, std::u32string_view text) {
   };
   for (const char32_t c : text) {
     if (c < 0x20 || c == 0x2028 || c == 0x2029 || covered(c)) continue;
-    int found = -1;
-    if (const auto cached = fallback_cache_.find(c); cached != fallback_cache_.end()) {
+    // First the query's own families (another style of them may have it), best style match first.
+    std::vector<int> own;
+    for (const std::string& family : query.families) {
+      for (const int i : family_candidates(family)) {
+        if (face_has(i, c)) own.push_back(i);
+      }
+    }
+    int found = best_of(own, query);
+    if (found >= 0) {
+    } else if (const auto cached = fallback_cache_.find(c); cached != fallback_cache_.end()) {
       found = cached->second;
     } else if (fallback_cache_.size() >= kMaxFallbackLookups) {
       continue;  // bounded work: a text of a million distinct characters does not query a million times
     } else {
-      // The query's own families (other styles of them), then the files and directories given, then the system.
-      std::vector<int> order;
-      for (const std::string& family : query.families) {
-        for (const int i : family_candidates(family)) order.push_back(i);
-      }
+      // Then the files and directories given (best style match among those that have it), then the system's.
+      std::vector<int> given;
       for (std::size_t i = 0; i < faces_.size(); ++i) {
-        if (!faces_[i].system) order.push_back(static_cast<int>(i));
+        if (!faces_[i].system && !broken_[i] && face_has(static_cast<int>(i), c)) given.push_back(static_cast<int>(i));
       }
-      for (const int i : order) {
-        if (!broken_[static_cast<std::size_t>(i)] && face_has(i, c)) {
-          found = i;
-          break;
-        }
-      }
+      found = best_of(given, query);
       if (found < 0 && system_ && system_->config) {
         FcPattern* pattern = FcPatternCreate();
         FcCharSet* set = FcCharSetCreate();

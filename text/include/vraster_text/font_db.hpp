@@ -88,6 +88,7 @@ class FontDb {
   int match_uncached(const FontQuery& query);
   int best_of(const std::vector<int>& candidates, const FontQuery& query) const;
   std::vector<int> family_candidates(std::string_view family) const;
+  std::vector<int> family_candidates_uncached(std::string_view family) const;
   std::shared_ptr<Font> load(int index);
   bool face_has(int index, char32_t c);
 
@@ -98,6 +99,7 @@ class FontDb {
   std::string default_family_ = "serif";
   std::map<char32_t, int> fallback_cache_;     // code point -> face index (-1: none)
   std::map<std::string, int> match_cache_;     // query -> match_index
+  mutable std::map<std::string, std::vector<int>> family_cache_;  // family name -> faces (family_candidates)
   std::map<std::pair<int, std::string>, std::shared_ptr<Font>> instances_;  // variable faces at given axes
   std::shared_ptr<Font> instance(int index, const FontQuery& query);
   std::vector<std::string> warnings_;
