@@ -41,7 +41,7 @@ constexpr const char* kUsage =
     "  vraster text \"TEXT\" -o OUT.png [--font FILE]... [--face-index N] [--size PX] [--width W]\n"
     "               [--align left|center|right] [--line-height PX] [--color C] [--background C] [--aa MODE]\n"
     "               [--features F] [--lang L] [--script S] [--dir auto|ltr|rtl] [--hinting none|light]\n"
-    "               [--margin PX]\n"
+    "               [--margin PX] [--font-dir DIR]... [--no-system-fonts]\n"
     "  vraster accuracy [SCENE.svg...] -o DIR [--frames N] [--max-side PX]   (AA methods: time vs error)\n"
     "  vraster compare REFERENCE.png OURS.png [--diff DIFF.png]   (the conformance pass rule)\n"
     "  vraster mesh IN.vmesh|IN.obj -o OUT.png [--shading flat|gouraud|phong] [--depth zbuffer|painter|none]\n"
