@@ -89,6 +89,7 @@ struct Placed {
   int chunk = 0;
   bool on_path = false;
   Affine path_transform;        // for glyphs on a path: the whole placement
+  Affine line_transform;        // for glyphs on a path: the frame their decorations follow (as if sideways)
 };
 
 /// x, y, dx, dy (lengths; em and ex relative to the element's font size) or rotate (plain numbers).
@@ -541,6 +542,17 @@ class TextBuilder {
       for (std::size_t g = chunk_first_glyph; g < placed_.size(); ++g)
         placed_[g].y -= baseline_line(placed_[g].element, Baseline::Central);
       place_on_path(down, chunk_first_glyph);
+      // Ideographs, kana and hangul stand upright (Unicode Vertical_Orientation U): centred on the line, the
+      // middle of their em box at the middle of their advance.
+      for (std::size_t g = chunk_first_glyph; g < placed_.size(); ++g) {
+        Placed& p = placed_[g];
+        if (!is_upright(chars_[p.ch].c)) continue;
+        const double advance = p.advance * p.stretch;
+        const double central = baseline_line(p.element, Baseline::Central);
+        const double across = -(p.y + central);  // dx and baseline shifts, across the line
+        const double mid = origin.y + p.x + advance / 2;
+        p.path_transform = Affine::translate(origin.x - advance / 2 + across, mid - central);
+      }
       pen = Point{origin.x, origin.y + pen.x};
     } else if (path >= 0) {
       const TextPath& tp = paths_[static_cast<std::size_t>(path)];
@@ -687,6 +699,14 @@ class TextBuilder {
     return host_.length("1%", 2, unit) ? value * unit : 0;
   }
 
+  /// Characters set upright in vertical text: CJK ideographs, kana, hangul, fullwidth forms and CJK symbols.
+  static bool is_upright(char32_t c) {
+    return (c >= 0x1100 && c <= 0x11FF) || (c >= 0x2E80 && c <= 0x2FDF) || (c >= 0x3000 && c <= 0x30FF) ||
+           (c >= 0x3100 && c <= 0x31FF) || (c >= 0x3400 && c <= 0x4DBF) || (c >= 0x4E00 && c <= 0x9FFF) ||
+           (c >= 0xA000 && c <= 0xA4CF) || (c >= 0xAC00 && c <= 0xD7AF) || (c >= 0xF900 && c <= 0xFAFF) ||
+           (c >= 0xFF00 && c <= 0xFF60) || (c >= 0xFFE0 && c <= 0xFFE6) || (c >= 0x20000 && c <= 0x3FFFF);
+  }
+
   /// Scripts whose letters join: letter-spacing would break them apart, so it is not applied (CSS Text 3,
   /// "cursive tracking").
   static bool is_cursive(char32_t c) {
@@ -712,6 +732,7 @@ class TextBuilder {
       p.on_path = true;
       p.path_transform = Affine::translate(point.x, point.y) * Affine::rotate(angle * 180 / std::numbers::pi) *
                          Affine::translate(-advance / 2, p.y) * Affine::rotate(p.rotate);
+      p.line_transform = p.path_transform;
       placed_[keep++] = p;
     }
     placed_.resize(keep);
@@ -773,7 +794,7 @@ class TextBuilder {
       if (p.on_path) {  // along a path: one rectangle per glyph, turned with it
         Path r;
         r.add_rect(Rect{0, centre - thickness / 2 - p.y, p.advance, centre + thickness / 2 - p.y});
-        out.add_path(r.transformed(p.path_transform * Affine::rotate(-p.rotate)));
+        out.add_path(r.transformed(p.line_transform * Affine::rotate(-p.rotate)));
         continue;
       }
       if (p.rotate != 0) {  // a rotated glyph: its own piece of line, turned with it
