@@ -507,7 +507,7 @@ class TextBuilder {
     if (vertical_) pen = Point{0, 0};
     const std::size_t chunk_first_glyph = placed_.size();
     const double start_x = pen.x;
-    for (const Run& run : runs) shape_and_place(run, chunk, pen);
+    for (const Run& run : runs) shape_and_place(run, begin, end, chunk, pen);
     // textLength: innermost elements first (they come later in elements_).
     // An element that spans several chunks keeps its natural length (as resvg does).
     // Elements are in document order, so their first characters never decrease: those starting in this chunk
@@ -620,15 +620,22 @@ class TextBuilder {
     pen.x += shift;
   }
 
-  void shape_and_place(const Run& run, int chunk, Point& pen) {
+  /// Shapes a run and places its glyphs. The run is shaped with up to kContext characters of the chunk on each
+  /// side (then only its own glyphs are kept), so kerning and joining work across a change of font style, as
+  /// they do in resvg (which shapes the whole chunk once per style).
+  void shape_and_place(const Run& run, std::uint32_t chunk_begin, std::uint32_t chunk_end, int chunk, Point& pen) {
+    constexpr std::uint32_t kContext = 8;
     const TextProperties& t = element(run.element).style.text;
+    const std::uint32_t from = std::max(chunk_begin, run.begin > kContext ? run.begin - kContext : 0);
+    const std::uint32_t to = std::min(chunk_end, run.end + kContext);
     std::u32string text;
-    for (std::uint32_t i = run.begin; i < run.end; ++i) {
+    for (std::uint32_t i = from; i < to; ++i) {
       char32_t c = chars_[i].c;
       if (is_small(i)) c = static_cast<char32_t>(std::towupper(static_cast<wint_t>(c)));
       text.push_back(c);
     }
-    text::FontList fonts = fonts_.fonts_for(query_of(t), text);
+    text::FontList fonts =
+        fonts_.fonts_for(query_of(t), std::u32string_view(text).substr(run.begin - from, run.end - run.begin));
     if (fonts.empty()) {
       if (!warned_fonts_) host_.warn(text_node_, "no font available for text, not drawn");
       warned_fonts_ = true;
@@ -650,9 +657,14 @@ class TextBuilder {
       host_.warn(text_node_, std::string("text not shaped: ") + e.what());
       return;
     }
+    // The run's own glyphs; clusters become character indices.
+    std::erase_if(glyphs, [&](const text::ShapedGlyph& sg) {
+      return from + sg.cluster < run.begin || from + sg.cluster >= run.end;
+    });
+    for (text::ShapedGlyph& sg : glyphs) sg.cluster += from;
     for (std::size_t g = 0; g < glyphs.size(); ++g) {
       const text::ShapedGlyph& sg = glyphs[g];
-      const std::uint32_t ci = run.begin + std::min<std::uint32_t>(sg.cluster, run.end - run.begin - 1);
+      const std::uint32_t ci = sg.cluster;
       const bool cluster_start = g == 0 || glyphs[g - 1].cluster != sg.cluster;
       const bool cluster_end = g + 1 == glyphs.size() || glyphs[g + 1].cluster != sg.cluster;
       const Char& ch = chars_[ci];
