@@ -1,13 +1,19 @@
 #!/usr/bin/env bash
-# Renders the resvg conformance tests (../shared/conformance/resvg) with the vraster CLI, compares each with its
-# reference PNG under the pass rule of `vraster compare`, and writes a report:
+# Renders the resvg conformance tests (../shared/conformance/resvg, and the text tests in resvg-text) with the
+# vraster CLI, compares each with its reference PNG under the pass rule of `vraster compare`, and writes a report
+# with one section per suite:
 #   OUT/summary.md    pass counts per category and per folder, every test that does not pass and why
 #   OUT/index.html    reference / ours / difference side by side for each failure
 #   OUT/results.tsv   one line per test: path, category, folder, status, milliseconds, detail
 # Status: pass, fail (the images differ), error (exit 2: the document was refused), crash (any other exit or a
-# signal), slow (over the time cap, 1 s), noref (no reference PNG).
+# signal), slow (over the time cap, 1 s), noref (no reference PNG), left-out (a text test that needs a font the
+# suite does not bundle: manifest.tsv, column font_files_not_bundled; not run, not counted).
+# The text tests run with the suite's fonts only (--font-dir fonts --no-system-fonts), the harness's generic
+# families (serif Noto Serif, sans-serif Noto Sans, cursive Yellowtail, fantasy Sedgwick Ave Display, monospace
+# Noto Mono) and its default font-size 12, so their results do not depend on this machine's fonts.
 #
 # usage: scripts/conformance.sh [-j N] [--out DIR] [--vraster BIN] [--tests LIST] [--expect FILE] [--cap SECONDS]
+#                               [--suite resvg|resvg-text|all]
 #   --tests LIST   only the tests listed (paths relative to ../shared/conformance, one a line)
 #   --expect FILE  lines "STATUS<TAB>PATH": runs those tests; exits 1 if one listed as pass no longer passes
 # The suite is ../shared/conformance from the repository root (or from the main checkout of a git worktree);
@@ -26,6 +32,7 @@ vraster=$repo/build/vraster
 tests_file=
 expect_file=
 cap=1
+suites=all
 
 while (($#)); do
   case $1 in
@@ -36,7 +43,8 @@ while (($#)); do
     --tests) tests_file=$2; shift 2 ;;
     --expect) expect_file=$2; shift 2 ;;
     --cap) cap=$2; shift 2 ;;
-    -h|--help) sed -n '2,15p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --suite) suites=$2; shift 2 ;;
+    -h|--help) sed -n '2,20p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "conformance.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -59,7 +67,12 @@ if [[ -n $expect_file ]]; then
 elif [[ -n $tests_file ]]; then
   grep -v '^$' "$tests_file" > "$list"
 else
-  (cd "$suite" && find resvg -name '*.svg' | LC_ALL=C sort) > "$list"
+  case $suites in
+    all) dirs=(resvg resvg-text) ;;
+    resvg|resvg-text) dirs=("$suites") ;;
+    *) echo "conformance.sh: --suite: expected resvg, resvg-text or all, got '$suites'" >&2; exit 2 ;;
+  esac
+  (cd "$suite" && for d in "${dirs[@]}"; do [[ -d $d ]] && find "$d" -name '*.svg'; done | LC_ALL=C sort) > "$list"
 fi
 
 # One test: renders it 300 px wide (the references' width), compares, writes results/NAME.tsv.
@@ -68,6 +81,19 @@ run_one() {
   name=${rel#resvg/}
   name=${name%.svg}
   name=${name//\//__}
+  local -a extra=()
+  if [[ $rel == resvg-text/* ]]; then
+    # The resvg text harness: its fonts only, its generic families, font-size 12.
+    extra=(--font-dir "$suite/fonts" --no-system-fonts --serif-family "Noto Serif" --sans-serif-family "Noto Sans"
+           --cursive-family Yellowtail --fantasy-family "Sedgwick Ave Display" --monospace-family "Noto Mono"
+           --default-family serif --default-font-size 12)
+    if awk -F'\t' -v r="$rel" '$1 == r && $9 != "" && $9 != "-" { found = 1 } END { exit !found }' "$suite/manifest.tsv"; then
+      printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$rel" "$(cut -d/ -f2 <<<"$rel")" "$(cut -d/ -f2-3 <<<"$rel")" left-out 0 \
+        "needs a font the suite does not bundle: $(awk -F'\t' -v r="$rel" '$1 == r { print $9 }' "$suite/manifest.tsv")" \
+        >"$out/results/$name.tsv"
+      return
+    fi
+  fi
   local svg=$suite/$rel ref=$suite/${rel%.svg}.png ours=$out/ours/$name.png log=$out/logs/$name.txt
   local category folder
   category=$(cut -d/ -f2 <<<"$rel")
@@ -75,7 +101,7 @@ run_one() {
   local start end
   start=$(date +%s%N)
   set +e
-  timeout --kill-after=1 "$cap" "$vraster" render "$svg" -o "$ours" -w 300 --quiet --allow-dir "$suite" >"$log" 2>&1
+  timeout --kill-after=1 "$cap" "$vraster" render "$svg" -o "$ours" -w 300 --quiet --allow-dir "$suite" "${extra[@]}" >"$log" 2>&1
   rc=$?
   set -e
   end=$(date +%s%N)
@@ -118,27 +144,46 @@ LC_ALL=C sort "$out"/results/*.tsv >"$out/results.tsv"
 rm -rf "$out/results"
 
 # ---- summary.md ----
-total=$(wc -l <"$out/results.tsv")
+# Counts leave out the left-out tests (they need fonts the suite does not have).
+counted=$(awk -F'\t' '$4 != "left-out"' "$out/results.tsv" | wc -l)
+total=$counted
 passed=$(awk -F'\t' '$4 == "pass"' "$out/results.tsv" | wc -l)
+section() {  # one suite's tables: $1 = resvg or resvg-text
+  local rows
+  rows=$(awk -F'\t' -v s="$1" 'index($1, s "/") == 1' "$out/results.tsv")
+  [[ -z $rows ]] && return
+  local n p l
+  n=$(awk -F'\t' '$4 != "left-out"' <<<"$rows" | wc -l)
+  p=$(awk -F'\t' '$4 == "pass"' <<<"$rows" | wc -l)
+  l=$(awk -F'\t' '$4 == "left-out"' <<<"$rows" | wc -l)
+  echo "## $1: $p of $n pass ($(awk -v p="$p" -v t="$n" 'BEGIN { printf "%.1f", t ? 100 * p / t : 0 }')%)${l:+, $l left out}"
+  echo
+  echo "| category | pass | total | % | fail | error | crash | slow |"
+  echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+  awk -F'\t' '$4 != "left-out" { n[$2]++; s[$2, $4]++ } END {
+      for (c in n) printf "| %s | %d | %d | %.1f | %d | %d | %d | %d |\n", c, s[c, "pass"], n[c], 100 * s[c, "pass"] / n[c],
+                          s[c, "fail"], s[c, "error"], s[c, "crash"], s[c, "slow"] }' <<<"$rows" | LC_ALL=C sort
+  echo
+  echo "| folder | pass | total |"
+  echo "| --- | ---: | ---: |"
+  awk -F'\t' '$4 != "left-out" { n[$3]++; if ($4 == "pass") p[$3]++ } END { for (f in n) printf "| %s | %d | %d |\n", f, p[f], n[f] }' \
+    <<<"$rows" | LC_ALL=C sort
+  echo
+}
 {
   echo "# Conformance: $passed of $total pass ($(awk -v p="$passed" -v t="$total" 'BEGIN { printf "%.1f", t ? 100 * p / t : 0 }')%)"
   echo
   echo "Suite: ../shared/conformance, rule: \`vraster compare\`, time cap ${cap} s, $(date -u +%Y-%m-%d)."
   echo
-  echo "| category | pass | total | % | fail | error | crash | slow |"
-  echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
-  awk -F'\t' '{ n[$2]++; s[$2, $4]++ } END {
-      for (c in n) printf "| %s | %d | %d | %.1f | %d | %d | %d | %d |\n", c, s[c, "pass"], n[c], 100 * s[c, "pass"] / n[c],
-                          s[c, "fail"], s[c, "error"], s[c, "crash"], s[c, "slow"] }' "$out/results.tsv" | LC_ALL=C sort
-  echo
-  echo "| folder | pass | total |"
-  echo "| --- | ---: | ---: |"
-  awk -F'\t' '{ n[$3]++; if ($4 == "pass") p[$3]++ } END { for (f in n) printf "| %s | %d | %d |\n", f, p[f], n[f] }' \
-    "$out/results.tsv" | LC_ALL=C sort
-  echo
+  section resvg
+  section resvg-text
   echo "## Tests that do not pass"
   echo
-  awk -F'\t' '$4 != "pass" { printf "- %s: %s %s\n", $1, $4, $6 }' "$out/results.tsv"
+  awk -F'\t' '$4 != "pass" && $4 != "left-out" { printf "- %s: %s %s\n", $1, $4, $6 }' "$out/results.tsv"
+  echo
+  echo "## Left out (fonts not bundled)"
+  echo
+  awk -F'\t' '$4 == "left-out" { printf "- %s: %s\n", $1, $6 }' "$out/results.tsv"
 } >"$out/summary.md"
 
 # ---- index.html ----
@@ -164,7 +209,7 @@ img, .missing { width: 300px; border: 1px solid #999;
 EOF
   echo "<h1>vraster conformance: $passed of $total pass</h1>"
   echo '<table class="sum"><tr><th>category</th><th>pass</th><th>total</th><th>fail</th><th>error</th><th>crash</th><th>slow</th></tr>'
-  awk -F'\t' '{ n[$2]++; s[$2, $4]++ } END {
+  awk -F'\t' '$4 != "left-out" { split($1, p, "/"); k = p[1] "/" $2; n[k]++; s[k, $4]++ } END {
       for (c in n) printf "<tr><td>%s</td><td>%d</td><td>%d</td><td>%d</td><td>%d</td><td>%d</td><td>%d</td></tr>\n", c,
                           s[c, "pass"], n[c], s[c, "fail"], s[c, "error"], s[c, "crash"], s[c, "slow"] }' \
     "$out/results.tsv" | LC_ALL=C sort
@@ -172,7 +217,7 @@ EOF
   echo '<p>Each failure: the reference, our rendering, and the difference (red: a channel differs by more than'
   echo '96/255; orange: off by more than 16/255 after the 3x3 neighbourhood excuse; grey: the reference, faded).</p>'
   while IFS=$'\t' read -r rel _category _folder status ms detail; do
-    [[ $status == pass ]] && continue
+    [[ $status == pass || $status == left-out ]] && continue
     name=${rel#resvg/}
     name=${name%.svg}
     name=${name//\//__}
@@ -191,7 +236,7 @@ EOF
   echo '</body></html>'
 } >"$out/index.html"
 
-sed -n '1,/^## Tests/p' "$out/summary.md" | sed '$d'
+sed -n '1,/^## Tests that/p' "$out/summary.md" | sed '$d'
 echo "report: $out/summary.md, $out/index.html"
 
 # ---- regressions against an expectation file ----

@@ -10,6 +10,7 @@ packages=(
   libjpeg62-turbo-dev libgif-dev       # JPEG and GIF input (SVG <image>)
   libwebp-dev                          # WebP input (SVG <image>)
   zlib1g-dev                           # .svgz images inside SVG
+  libfontconfig-dev                    # system fonts for text (text/FontDb)
   libpugixml-dev                       # XML parser (svg_subset/)
   libgtest-dev                         # tests
   libcairo2-dev                        # peer in benchmarks and cross-check tests only

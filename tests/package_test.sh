@@ -58,6 +58,24 @@ expect "$work/hello_pc.txt" "pixel 32,32 = 255 0 0 255" "pixel 2,2 = 255 255 255
 # shellcheck disable=SC2046
 cc -std=c99 "$src/samples/poster.c" -o "$work/poster_pc" $(pkg-config --cflags --libs vraster-text)
 "$work/poster_pc" "$work/poster_c_pc.png" >"$work/poster_c_pc.txt"
+# SVG text: the SVG library pulls in the text library (vraster-svg.pc requires vraster-text).
+if [[ -f $prefix/lib/pkgconfig/vraster-text.pc ]]; then
+  cat >"$work/svg_text.cpp" <<'CPP'
+#include <cstdio>
+#include <variant>
+#include "svg_subset/tree.hpp"
+int main() {
+  const vraster::svg::Tree tree = vraster::svg::parse_svg_tree(
+      "<svg xmlns='http://www.w3.org/2000/svg' width='60' height='30'><text x='5' y='20'>Hi</text></svg>");
+  const auto& text = std::get<vraster::svg::Group>(tree.root.children.at(0).value);
+  std::printf("text paths %zu\n", text.children.size());
+}
+CPP
+  # shellcheck disable=SC2046
+  c++ -std=c++20 "$work/svg_text.cpp" -o "$work/svg_text_pc" $(pkg-config --cflags --libs vraster-svg)
+  "$work/svg_text_pc" >"$work/svg_text_pc.txt"
+  expect "$work/svg_text_pc.txt" "text paths 1"
+fi
 
 # 3. The poster's pixels: the sky gradient half way down, the frame's clip hiding the sun beside it, the sun's
 #    centre (its first stop, 1 0.95 0.6), and the same picture from every build and from both APIs.

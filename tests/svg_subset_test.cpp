@@ -687,12 +687,12 @@ TEST(SvgDocument, BadAttributeValues) {
 TEST(SvgDocument, UnsupportedElementWarning) {
   const Document doc = parse_svg(
       "<svg width=\"10\" height=\"10\">\n"
-      "  <text x=\"1\">hi</text>\n"
+      "  <foreignObject x=\"1\">hi</foreignObject>\n"
       "  <defs><path d=\"M0 0h1v1z\"/></defs>\n"
       "  <path d=\"M0 0h1v1z\"/>\n"
       "</svg>");
   ASSERT_EQ(doc.warnings.size(), 1u);
-  EXPECT_EQ(doc.warnings[0], "2:3: element <text> is not supported yet, ignored");
+  EXPECT_EQ(doc.warnings[0], "2:3: element <foreignObject> is not supported yet, ignored");
   EXPECT_EQ(doc.items.size(), 1u);  // defs are not drawn
 }
 

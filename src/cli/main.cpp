@@ -25,6 +25,7 @@
 #include "vraster/vraster.hpp"
 #if VRASTER_WITH_TEXT
 #include "vraster_text/cli.hpp"
+#include "vraster_text/font_db.hpp"
 #endif
 
 namespace vraster::cli {
@@ -37,12 +38,15 @@ constexpr const char* kUsage =
     "                 [--hairline bresenham|dda|wu|analytic]   (every stroke as a 1-px hairline)\n"
     "                 [--allow-dir DIR]   (<image> files may come from DIR too, not only IN.svg's folder)\n"
     "                 [--no-plan]   (replay every draw call as recorded: no culling, no layer folding)\n"
-    "  vraster explain IN.svg [--json] [-w W] [-h H] [--aa MODE] [--allow-dir DIR] [--quiet]   (the render plan)\n"
+    "                 [--font-dir DIR]... [--no-system-fonts] [--serif-family F] [--sans-serif-family F]\n"
+    "                 [--monospace-family F] [--cursive-family F] [--fantasy-family F] [--default-family F]\n"
+    "                 [--default-font-size PX]   (fonts for <text>: DIRs, then the system's via fontconfig)\n"
+    "  vraster explain IN.svg [--json] [render's size, --aa, --allow-dir and font options]   (the render plan)\n"
     "  vraster fill-rules IN.svg -o SHEET.png [--winding] [--aa MODE] [--panel PX]\n"
     "  vraster text \"TEXT\" -o OUT.png [--font FILE]... [--face-index N] [--size PX] [--width W]\n"
     "               [--align left|center|right] [--line-height PX] [--color C] [--background C] [--aa MODE]\n"
     "               [--features F] [--lang L] [--script S] [--dir auto|ltr|rtl] [--hinting none|light]\n"
-    "               [--margin PX]\n"
+    "               [--margin PX] [--font-dir DIR]... [--no-system-fonts]\n"
     "  vraster accuracy [SCENE.svg...] -o DIR [--frames N] [--max-side PX]   (AA methods: time vs error)\n"
     "  vraster compare REFERENCE.png OURS.png [--diff DIFF.png]   (the conformance pass rule)\n"
     "  vraster mesh IN.vmesh|IN.obj -o OUT.png [--shading flat|gouraud|phong] [--depth zbuffer|painter|none]\n"
@@ -64,6 +68,12 @@ struct RenderArgs {
   int bench_frames = 0;
   int width = 0, height = 0;  ///< requested output size (0: from the document)
   bool quiet = false;         ///< no warnings on stderr
+  // Fonts for <text>.
+  std::vector<std::string> font_dirs;
+  bool system_fonts = true;
+  std::vector<std::pair<std::string, std::string>> generic_families;  ///< (generic name, family)
+  std::string default_family = "serif";
+  double default_font_size = 16;
   bool help = false;
   bool plan = true;           ///< --no-plan: replay the recorded scene naively
   bool json = false;          ///< explain --json
@@ -152,6 +162,22 @@ RenderArgs parse_render_args(int argc, char** argv) {
         if (!c) throw UsageError{"--background: " + quoted(v) + " is not a colour"};
         a.background = *c;
       }
+    } else if (arg == "--font-dir") {
+      a.font_dirs.emplace_back(r.value(arg));
+    } else if (arg == "--no-system-fonts") {
+      a.system_fonts = false;
+    } else if (arg == "--serif-family" || arg == "--sans-serif-family" || arg == "--monospace-family" ||
+               arg == "--cursive-family" || arg == "--fantasy-family") {
+      std::string generic(arg.substr(2));
+      generic.resize(generic.size() - 7);  // "-family"
+      a.generic_families.emplace_back(generic, std::string(r.value(arg)));
+    } else if (arg == "--default-family") {
+      a.default_family = r.value(arg);
+    } else if (arg == "--default-font-size") {
+      a.default_font_size = parse_number(arg, r.value(arg));
+      if (!(a.default_font_size > 0 && a.default_font_size <= 4096)) {
+        throw UsageError{"--default-font-size must be between 0 and 4096 pixels"};
+      }
     } else if (arg == "--bench") {
       const double n = parse_number(arg, r.value(arg));
       if (!(n >= 1 && n <= 1e6) || n != std::floor(n)) throw UsageError{"--bench needs a frame count from 1 to 1000000"};
@@ -207,6 +233,31 @@ void render_document(const svg::Document& doc, const RenderArgs& a) {
   warn_about_exact_fallbacks(renderer);
 }
 
+/// How the document is read: the folders images may come from, and the fonts text may use.
+svg::ParseOptions parse_options(const RenderArgs& a) {
+  svg::ParseOptions options;
+  options.allowed_dir = a.allow_dir;
+  options.default_font_size = a.default_font_size;
+#if VRASTER_WITH_TEXT
+  // Text uses only these fonts: the directories named, the system's (fontconfig) unless disabled, and the
+  // embedded default font as the last resort.
+  auto fonts = std::make_shared<text::FontDb>();
+  for (const std::string& dir : a.font_dirs) fonts->add_directory(dir);
+  if (a.system_fonts) fonts->add_system_fonts();
+  fonts->add_embedded_default();
+  for (const auto& [generic, family] : a.generic_families) {
+    text::GenericFamily g;
+    if (text::parse_generic_family(generic, g)) fonts->set_generic_family(g, family);
+  }
+  fonts->set_default_family(a.default_family);
+  if (!a.quiet) {
+    for (const std::string& w : fonts->warnings()) std::cerr << "vraster: font skipped: " << printable(w, 1024) << "\n";
+  }
+  options.fonts = fonts;
+#endif
+  return options;
+}
+
 svg::DrawSettings draw_settings(const RenderArgs& a) {
   svg::DrawSettings settings;
   settings.aa = a.settings.aa;
@@ -258,9 +309,7 @@ int run_explain(int argc, char** argv) {
   render_style.push_back(const_cast<char*>("1"));
   a = parse_render_args(static_cast<int>(render_style.size()), render_style.data());
   if (a.settings.hairline || a.depth != 8) throw UsageError{"explain: --hairline and --depth do not apply"};
-  svg::ParseOptions options;
-  options.allowed_dir = a.allow_dir;
-  const svg::Tree tree = svg::load_svg_tree(a.input, options);
+  const svg::Tree tree = svg::load_svg_tree(a.input, parse_options(a));
   if (!a.quiet) {
     for (const std::string& w : tree.warnings) std::cerr << printable(a.input, 1024) << ":" << w << "\n";
   }
@@ -277,8 +326,7 @@ int run_render(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
-  svg::ParseOptions options;
-  options.allowed_dir = a.allow_dir;
+  const svg::ParseOptions options = parse_options(a);
   if (a.settings.hairline) {
     svg::Document doc = svg::load_svg(a.input, options);
     if (!a.quiet) {

@@ -26,6 +26,7 @@
 #include "scan.hpp"
 #include "xml_check.hpp"
 #include "css.hpp"
+#include "text.hpp"
 #include "svg_subset/svg.hpp"
 #include "svg_subset/tree.hpp"
 #include "vraster/files.hpp"
@@ -108,6 +109,7 @@ struct Style {
   Color stop_color{0, 0, 0, 1};
   float stop_opacity = 1;
   bool overflow_visible = false;
+  detail::TextProperties text;  // font, spacing, anchor, baselines, decorations (text.hpp)
 
   /// The style a child starts from: inherited properties kept, the others at their initial values.
   Style inherited() const {
@@ -121,6 +123,7 @@ struct Style {
     s.stop_color = Color{0, 0, 0, 1};
     s.stop_opacity = 1;
     s.overflow_visible = false;
+    s.text.reset_non_inherited();
     return s;
   }
 };
@@ -137,7 +140,8 @@ constexpr std::string_view kProperties[] = {
     "image-rendering", "transform"};
 
 bool is_property(std::string_view name) {
-  return std::find(std::begin(kProperties), std::end(kProperties), name) != std::end(kProperties);
+  return std::find(std::begin(kProperties), std::end(kProperties), name) != std::end(kProperties) ||
+         detail::is_text_property(name);
 }
 
 enum class Axis { X, Y, Other };
@@ -191,7 +195,8 @@ class Builder {
   Tree run() {
     buffer_.assign(text_.begin(), text_.end());
     const pugi::xml_parse_result result =
-        xml_.load_buffer_inplace(buffer_.data(), buffer_.size(), pugi::parse_default, pugi::encoding_utf8);
+        xml_.load_buffer_inplace(buffer_.data(), buffer_.size(), pugi::parse_default | pugi::parse_ws_pcdata,
+                                 pugi::encoding_utf8);  // white-space-only text counts in <text>
     if (!result) {
       const auto offset = static_cast<std::size_t>(std::max<std::ptrdiff_t>(result.offset, 0));
       fail(std::min(offset, text_.size()), std::string("malformed XML: ") + result.description());
@@ -207,7 +212,9 @@ class Builder {
     tree_.file = file_;
     count_element(element_offset(root), 1);
     set_up_viewport(root);
-    Style style = computed(root, Style{});
+    Style initial;
+    initial.text.font_size = options_.default_font_size;
+    Style style = computed(root, initial);
     tree_.root.id = root.attribute("id").value();
     tree_.root.transform = root_transform(root);
     if (style.displayed) {
@@ -570,6 +577,7 @@ class Builder {
       const std::string_view name = attr.name();
       // transform is an attribute here, not CSS; the `marker` shorthand is CSS only (SVG 2, 11.6.2).
       if (!is_property(name) || name == "transform" || name == "marker") continue;
+      if (detail::is_text_property(name) && !detail::is_text_attribute(name)) continue;
       const std::string_view raw = attr.value();
       const std::string_view v = trim(raw);
       own.push_back(css::Declaration{std::string(name), std::string(v), false,
@@ -717,6 +725,8 @@ class Builder {
       s.smooth_images = !(v == "optimizeSpeed" || v == "crisp-edges" || v == "pixelated");
     } else if (name == "overflow") {
       s.overflow_visible = v == "visible" || v == "auto";
+    } else if (detail::is_text_property(name)) {
+      if (!detail::apply_text_property(name, v, s.text, parent.text)) bad();
     } else if (name == "filter") {
       if (v != "none" && !warned_filter_) {
         warned_filter_ = true;
@@ -777,6 +787,7 @@ class Builder {
     else if (name == "clip-path") s.clip_path = p.clip_path;
     else if (name == "mask") s.mask = p.mask;
     else if (name == "image-rendering") s.smooth_images = p.smooth_images;
+    else detail::inherit_text_property(name, s.text, p.text);
     if (name == "marker-start" || name == "marker") s.marker_start = p.marker_start;
     if (name == "marker-mid" || name == "marker") s.marker_mid = p.marker_mid;
     if (name == "marker-end" || name == "marker") s.marker_end = p.marker_end;
@@ -1097,7 +1108,7 @@ class Builder {
     const bool container = name == "g" || name == "a" || name == "switch";
     const bool shape = name == "path" || name == "rect" || name == "circle" || name == "ellipse" || name == "line" ||
                        name == "polyline" || name == "polygon";
-    const bool known = container || shape || name == "use" || name == "svg" || name == "image";
+    const bool known = container || shape || name == "use" || name == "svg" || name == "image" || name == "text";
     if (!known) {
       warn("unsupported elements", at, "element <" + printable(name) + "> is not supported yet, ignored");
       return;
@@ -1128,6 +1139,10 @@ class Builder {
       nested_viewport(node, node, style, group, depth, std::nullopt, std::nullopt);
     } else if (name == "use") {
       if (!use_element(node, style, group, depth)) return;
+    } else if (name == "text") {
+      TextAdapter host(*this, style, depth);
+      if (!fonts_) fonts_ = options_.fonts ? options_.fonts : detail::default_font_db();
+      detail::build_text(node, span_style(style), host, fonts_.get(), group);
     } else if (name == "image") {
       image_element(node, style, group, at);
     } else {
@@ -1660,6 +1675,61 @@ class Builder {
     return out;
   }
 
+
+  // ---- text (text.cpp lays it out; these are the services it needs) ----
+
+  detail::SpanStyle span_style(const Style& s) {
+    detail::SpanStyle out;
+    out.text = s.text;
+    if (s.visible) {
+      const Paint fill = resolve_paint(s.fill, s.fill_opacity, s);
+      if (fill.kind != Paint::Kind::None) out.fill = Fill{fill, s.fill_rule};
+      const Paint stroke = s.stroke_style.width > 0 ? resolve_paint(s.stroke, s.stroke_opacity, s) : Paint{};
+      if (stroke.kind != Paint::Kind::None) out.stroke = Stroke{stroke, s.stroke_style};
+    }
+    out.stroke_first = s.stroke_first;
+    out.crisp_edges = s.crisp_edges;
+    return out;
+  }
+
+  class TextAdapter final : public detail::TextHost {
+   public:
+    TextAdapter(Builder& b, const Style& style, int depth) : b_(b) { stack_.push_back({style, depth}); }
+    std::optional<detail::SpanStyle> enter(pugi::xml_node node) override {
+      const int depth = stack_.back().second + 1;
+      b_.count_element(b_.element_offset(node), depth);
+      Style s = b_.computed(node, stack_.back().first);
+      if (!s.displayed) return std::nullopt;
+      stack_.emplace_back(std::move(s), depth);
+      return b_.span_style(stack_.back().first);
+    }
+    void leave() override { stack_.pop_back(); }
+    void warn(pugi::xml_node node, const std::string& message) override {
+      b_.warn("text", b_.element_offset(node), message);
+    }
+    pugi::xml_node href_target(pugi::xml_node node) override { return b_.href_target(node); }
+    Path shape_of(pugi::xml_node node) override {
+      const std::string_view name = b_.local_name(node);
+      if (name != "path" && name != "rect" && name != "circle" && name != "ellipse" && name != "line" &&
+          name != "polyline" && name != "polygon")
+        return {};
+      Path path = b_.shape_path(node, name);
+      const Affine m = b_.own_transform(node);
+      if (!m.is_finite()) return {};
+      path.transform(m);
+      return path;
+    }
+    bool length(std::string_view value, int axis, double& out) override {
+      return b_.parse_length(value, axis == 0 ? Axis::X : axis == 1 ? Axis::Y : Axis::Other, out);
+    }
+    std::pair<int, int> position(pugi::xml_node node) override { return b_.lines_.position(b_.element_offset(node)); }
+    bool take_character() override { return ++b_.text_characters_ <= detail::kMaxTextCharacters; }
+
+   private:
+    Builder& b_;
+    std::vector<std::pair<Style, int>> stack_;
+  };
+
   // ---- paint servers, clip paths, masks ----
 
   Paint resolve_paint(const DeclaredPaint& d, float opacity, const Style& style) {
@@ -1961,6 +2031,8 @@ class Builder {
   const Paint* context_fill_ = nullptr;
   const Paint* context_stroke_ = nullptr;
   bool context_used_ = false;
+  std::shared_ptr<text::FontDb> fonts_;  // options_.fonts, or the embedded font alone
+  std::size_t text_characters_ = 0;      // laid out so far (detail::kMaxTextCharacters)
   std::string buffer_;  // the private copy pugixml parses in place
   pugi::xml_document xml_;
   Tree tree_;
@@ -2095,8 +2167,6 @@ class Flattener {
 
 }  // namespace
 
-Tree parse_svg_tree(std::string_view text, const std::string& file) { return parse_svg_tree(text, file, ParseOptions{}); }
-
 Tree parse_svg_tree(std::string_view text, const std::string& file, const ParseOptions& options) {
   std::int64_t pixels_left = kMaxDocumentImagePixels;
   return Builder(text, file, options, 0, pixels_left).run();
@@ -2117,7 +2187,7 @@ Document to_document(const Tree& tree) {
   return doc;
 }
 
-Document parse_svg(std::string_view text, const std::string& file) { return to_document(parse_svg_tree(text, file)); }
+Document parse_svg(std::string_view text, const std::string& file) { return parse_svg(text, file, ParseOptions{}); }
 
 Document parse_svg(std::string_view text, const std::string& file, const ParseOptions& options) {
   return to_document(parse_svg_tree(text, file, options));

@@ -3,6 +3,7 @@
 
 #include "vraster/fxaa.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <iostream>
@@ -13,6 +14,7 @@
 
 #include "vraster/error.hpp"
 #include "vraster/png.hpp"
+#include "vraster_text/font_db.hpp"
 #include "vraster_text/text.hpp"
 
 namespace vraster::text {
@@ -22,8 +24,9 @@ constexpr const char* kUsage =
     "usage: vraster text \"TEXT\" -o OUT.png [--font FILE]... [--face-index N] [--size PX] [--width W]\n"
     "                    [--align left|center|right] [--line-height PX] [--color C] [--background C]\n"
     "                    [--aa MODE] [--features F] [--lang L] [--script S] [--dir auto|ltr|rtl]\n"
-    "                    [--hinting none|light] [--margin PX]\n"
-    "  --font may be given more than once: later fonts are fallbacks; the embedded Noto Sans is the last one.\n"
+    "                    [--hinting none|light] [--margin PX] [--font-dir DIR]... [--no-system-fonts]\n"
+    "  --font may be given more than once: later fonts are fallbacks, then the embedded Noto Sans; characters\n"
+    "  none of them has fall back to the fonts of --font-dir directories, then to the system's (fontconfig).\n"
     "  C: #rgb, #rrggbb, #rrggbbaa, black, white, red, green, blue, gray, transparent\n"
     "  MODE: none | analytic | exact | ssaa-2|4|8|16 | msaa-4|8|16 | fxaa\n";
 
@@ -85,6 +88,8 @@ struct TextArgs {
   bool have_text = false;
   std::string output;
   std::vector<std::string> fonts;
+  std::vector<std::string> font_dirs;
+  bool system_fonts = true;
   int face_index = 0;
   TextStyle style;
   LayoutOptions layout;
@@ -109,6 +114,10 @@ TextArgs parse_args(int argc, char** argv) {
       a.output = value(arg);
     } else if (arg == "--font") {
       a.fonts.emplace_back(value(arg));
+    } else if (arg == "--font-dir") {
+      a.font_dirs.emplace_back(value(arg));
+    } else if (arg == "--no-system-fonts") {
+      a.system_fonts = false;
     } else if (arg == "--face-index") {
       const double v = parse_number(arg, value(arg));
       if (!(v >= 0 && v <= 65535) || v != std::floor(v)) throw UsageError{"--face-index must be 0 to 65535"};
@@ -183,6 +192,25 @@ int run_text_command(int argc, char** argv) {
     FontList fonts;
     for (const std::string& f : a.fonts) fonts.add(Font::load_file(f, a.face_index));
     fonts.add(Font::load_default());
+    // Fallbacks for what these fonts lack, from the same font database `vraster render` uses for SVG text.
+    FontDb db;
+    for (const std::string& dir : a.font_dirs) db.add_directory(dir);
+    if (a.system_fonts) db.add_system_fonts();
+    if (!db.faces().empty()) {
+      const std::u32string text = decode_utf8(a.text);
+      std::u32string missing;
+      for (const char32_t c : text) {
+        if (c >= 0x20 && std::none_of(fonts.fonts.begin(), fonts.fonts.end(), [&](const auto& f) { return f->has_glyph(c); }))
+          missing.push_back(c);
+      }
+      if (!missing.empty()) {
+        const FontList extra = db.fonts_for(FontQuery{}, missing);
+        for (std::size_t i = 1; i < extra.fonts.size(); ++i) fonts.add(extra.fonts[i]);
+        if (!extra.fonts.empty() && std::any_of(missing.begin(), missing.end(),
+                                                [&](char32_t c) { return extra.fonts[0]->has_glyph(c); }))
+          fonts.add(extra.fonts[0]);
+      }
+    }
     const TextLayout layout = layout_text(a.text, fonts, a.style, a.layout);
     // The image: the union of the logical box and the ink, plus the margin on every side.
     Rect box = layout.logical;

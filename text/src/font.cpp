@@ -1,4 +1,5 @@
 // Fonts: FreeType faces (outlines) and HarfBuzz fonts (shaping) over the same bytes.
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -6,6 +7,8 @@
 #include <iterator>
 
 #include "font_impl.hpp"
+#include <hb-ot.h>
+#include FT_MULTIPLE_MASTERS_H
 #include FT_OUTLINE_H
 #include FT_TRUETYPE_TABLES_H
 #include FT_TRUETYPE_TAGS_H
@@ -232,6 +235,79 @@ FontMetrics Font::metrics(double size) const {
   hb_font_get_h_extents(impl_->hb, &ext);
   const double s = size / units_per_em();
   return {-ext.ascender * s, -ext.descender * s, ext.line_gap * s};
+}
+
+bool Font::is_variable() const { return FT_HAS_MULTIPLE_MASTERS(impl_->face); }
+
+bool Font::set_variations(std::span<const FontVariation> values) {
+  const FT_Face face = impl_->face;
+  if (!FT_HAS_MULTIPLE_MASTERS(face)) return false;
+  FT_MM_Var* mm = nullptr;
+  if (FT_Get_MM_Var(face, &mm) != 0 || !mm) return false;
+  std::vector<FT_Fixed> coords(mm->num_axis);
+  std::vector<hb_variation_t> hb;
+  for (FT_UInt i = 0; i < mm->num_axis; ++i) {
+    const FT_Var_Axis& axis = mm->axis[i];
+    const double lo = axis.minimum / 65536.0, hi = axis.maximum / 65536.0;
+    double v = axis.def / 65536.0;
+    for (const FontVariation& fv : values) {
+      if (fv.tag == axis.tag && std::isfinite(fv.value)) v = fv.value;
+    }
+    v = std::clamp(v, std::min(lo, hi), std::max(lo, hi));
+    coords[i] = static_cast<FT_Fixed>(std::lround(v * 65536.0));
+    hb.push_back(hb_variation_t{static_cast<hb_tag_t>(axis.tag), static_cast<float>(v)});
+  }
+  FT_Done_MM_Var(impl_->library, mm);
+  if (FT_Set_Var_Design_Coordinates(face, static_cast<FT_UInt>(coords.size()), coords.data()) != 0) return false;
+  hb_font_set_variations(impl_->hb, hb.data(), static_cast<unsigned>(hb.size()));
+  impl_->outlines.clear();
+  impl_->sized_at = -1;
+  impl_->id = next_font_id.fetch_add(1);
+  return true;
+}
+
+bool Font::has_substitution_feature(std::string_view tag) const {
+  if (tag.size() != 4) return false;
+  const hb_tag_t t = hb_tag_from_string(tag.data(), 4);
+  hb_face_t* face = hb_font_get_face(impl_->hb);
+  hb_tag_t tags[64];
+  for (unsigned start = 0;; start += 64) {
+    unsigned count = 64;
+    const unsigned total = hb_ot_layout_table_get_feature_tags(face, HB_OT_TAG_GSUB, start, &count, tags);
+    for (unsigned i = 0; i < count; ++i) {
+      if (tags[i] == t) return true;
+    }
+    if (count == 0 || start + count >= total) return false;
+  }
+}
+
+DecorationMetrics Font::decoration_metrics(double size) const {
+  check_font_size(size);
+  const double s = size / units_per_em();
+  const FT_Face face = impl_->face;
+  DecorationMetrics m;
+  m.underline_thickness = face->underline_thickness > 0 ? face->underline_thickness * s : size / 14;
+  // The post table's underlinePosition, used as the line's centre (as browsers and resvg do). FreeType hands it
+  // on lowered by half a thickness (FT_FaceRec: "the center of the underlining stem"), which is undone here.
+  m.underline_position = face->underline_position != 0 || face->underline_thickness > 0
+                             ? -(face->underline_position + face->underline_thickness / 2.0) * s
+                             : size / 10;
+  m.strikeout_thickness = m.underline_thickness;
+  m.strikeout_position = -size * 0.3;
+  m.subscript_offset = size * 0.2;
+  m.superscript_offset = -size * 0.34;
+  m.x_height = -size * 0.5;
+  m.cap_height = -size * 0.7;
+  const auto* os2 = static_cast<const TT_OS2*>(FT_Get_Sfnt_Table(face, FT_SFNT_OS2));
+  if (os2 && os2->version != 0xFFFF) {
+    if (os2->yStrikeoutSize > 0) m.strikeout_thickness = os2->yStrikeoutSize * s;
+    if (os2->yStrikeoutPosition > 0) m.strikeout_position = -os2->yStrikeoutPosition * s;  // as the centre
+    if (os2->ySubscriptYOffset != 0) m.subscript_offset = std::abs(os2->ySubscriptYOffset) * s;
+    if (os2->ySuperscriptYOffset != 0) m.superscript_offset = -std::abs(os2->ySuperscriptYOffset) * s;
+    if (os2->version >= 2 && os2->sxHeight > 0) m.x_height = -os2->sxHeight * s;
+    if (os2->version >= 2 && os2->sCapHeight > 0) m.cap_height = -os2->sCapHeight * s;
+  }
+  return m;
 }
 
 double Font::advance(std::uint32_t glyph, double size) const {

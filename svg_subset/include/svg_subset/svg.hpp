@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,6 +19,10 @@
 #include "vraster/path.hpp"
 #include "vraster/raster.hpp"
 #include "vraster/stroke.hpp"
+
+namespace vraster::text {
+class FontDb;  // vraster_text/font_db.hpp
+}
 
 namespace vraster::svg {
 
@@ -100,9 +105,13 @@ struct Tree;
 /// Where <image> may read files from. Relative hrefs resolve against `base_dir` and must stay inside
 /// `allowed_dir` (empty: base_dir itself) once `..` and symbolic links are resolved; absolute paths and URLs
 /// with a scheme other than data: are never read. An empty base_dir reads no file at all (data: URLs only).
+/// The fonts text may use come from `fonts`: a document reads no font file from anywhere else.
 struct ParseOptions {
   std::string base_dir;     ///< the document's folder (load_svg fills it in when empty)
   std::string allowed_dir;  ///< a wider folder files may come from (e.g. a test suite's root); empty: base_dir
+  /// The fonts text may use. Null: the embedded default font (Noto Sans) alone.
+  std::shared_ptr<text::FontDb> fonts;
+  double default_font_size = 16;  ///< the root's font-size in px (CSS "medium")
 };
 
 /// Flattens a resolved tree (tree.hpp) into draw items for the core Renderer: what it cannot draw yet

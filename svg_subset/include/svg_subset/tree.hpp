@@ -19,6 +19,10 @@
 #include "vraster/stroke.hpp"
 #include "svg_subset/svg.hpp"
 
+namespace vraster::text {
+class FontDb;  // vraster_text/font_db.hpp
+}
+
 namespace vraster::svg {
 
 /// Which coordinates a paint server, clip path or mask is given in.
@@ -160,11 +164,11 @@ struct Tree {
   std::string file;
 };
 
+
 /// Parses SVG text into the resolved tree. Throws ParseError (svg.hpp) only for a document that cannot be used
 /// at all: malformed XML, no <svg> root, a size that cannot be resolved or is out of range, a reference loop,
 /// a limit exceeded. Invalid values are treated as not given, with a warning.
-/// No file is read unless `options` names a base folder (see ParseOptions).
-Tree parse_svg_tree(std::string_view text, const std::string& file = "<memory>");
-Tree parse_svg_tree(std::string_view text, const std::string& file, const ParseOptions& options);
+/// No file is read unless `options` names a base folder, and no font unless it names fonts (see ParseOptions).
+Tree parse_svg_tree(std::string_view text, const std::string& file = "<memory>", const ParseOptions& options = {});
 
 }  // namespace vraster::svg

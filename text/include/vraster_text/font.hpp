@@ -6,6 +6,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vraster/geometry.hpp"
@@ -32,6 +33,32 @@ struct FontMetrics {
   double descender = 0;   ///< baseline to the bottom (positive: below)
   double line_gap = 0;    ///< extra space between lines
   double line_height() const { return descender - ascender + line_gap; }
+};
+
+/// Positions for text decorations and baselines at one size, in pixels, y down (negative: above the baseline).
+/// Each comes from the font's tables when it has them (post: underline; OS/2: strikeout, sub- and superscript,
+/// x-height, cap height), otherwise from a usual proportion of the em. The tables' positions are taken as the
+/// lines' centres, as browsers draw them.
+struct DecorationMetrics {
+  double underline_position = 0;   ///< centre of the underline (positive: below the baseline)
+  double underline_thickness = 0;
+  double strikeout_position = 0;   ///< centre of the line-through (negative)
+  double strikeout_thickness = 0;
+  double subscript_offset = 0;     ///< how far a subscript's baseline drops (positive: down)
+  double superscript_offset = 0;   ///< how far a superscript's baseline rises (negative: up)
+  double x_height = 0;             ///< top of a lowercase x (negative)
+  double cap_height = 0;           ///< top of a capital (negative)
+};
+
+/// One axis value of a variable font ("wght" 700).
+struct FontVariation {
+  std::uint32_t tag = 0;  ///< four ASCII characters, big-endian ('w' << 24 | 'g' << 16 | 'h' << 8 | 't')
+  double value = 0;
+  static std::uint32_t make_tag(std::string_view four) {
+    std::uint32_t t = 0;
+    for (std::size_t i = 0; i < 4; ++i) t = t << 8 | static_cast<unsigned char>(i < four.size() ? four[i] : ' ');
+    return t;
+  }
 };
 
 /// A glyph's unhinted outline in font units (see Font::outline_units) and the box of all its points, control
@@ -77,8 +104,17 @@ class Font {
   /// The glyph for a Unicode code point, 0 (.notdef) when the font has none.
   std::uint32_t glyph_index(char32_t codepoint) const;
   bool has_glyph(char32_t codepoint) const { return glyph_index(codepoint) != 0; }
+  /// Whether the font has variation axes (an OpenType variable font).
+  bool is_variable() const;
+  /// Sets a variable font's design coordinates: the axes named take those values (clamped to the axis's range),
+  /// the others their defaults; axes the font lacks are ignored. Outlines, advances and shaping follow. Clears the
+  /// font's outline cache and gives it a new id(). Returns false (and changes nothing) for a font without axes.
+  bool set_variations(std::span<const FontVariation> values);
+  /// Whether the font's GSUB table has a feature with this tag ("smcp", "liga", ...).
+  bool has_substitution_feature(std::string_view tag) const;
 
   FontMetrics metrics(double size) const;
+  DecorationMetrics decoration_metrics(double size) const;
   /// Horizontal advance of a glyph at `size` pixels (unhinted).
   double advance(std::uint32_t glyph, double size) const;
 

@@ -47,7 +47,7 @@ struct LayoutOptions {
   double line_height = 0;    ///< baseline-to-baseline distance in pixels; 0: the first font's natural line height
 };
 
-/// One glyph as HarfBuzz shaped it, in pixels (y down).
+/// One glyph as HarfBuzz shaped it, in pixels; y_advance and y_offset keep HarfBuzz's direction (y up).
 struct ShapedGlyph {
   std::uint16_t font = 0;      ///< index into the font list
   std::uint32_t glyph = 0;
