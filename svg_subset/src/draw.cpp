@@ -105,6 +105,11 @@ struct Area {
   bool empty() const { return x1 <= x0 || y1 <= y0; }
 };
 
+Area intersect(const Area& a, const Area& b) {
+  const Area r{std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
+  return r.empty() ? Area{} : r;
+}
+
 /// Device pixels that `r` (user space, mapped by `m`) can touch, inside a w x h canvas.
 Area device_area(const Rect& r, const Affine& m, int w, int h) {
   const Rect d = transformed_rect(r, m);
@@ -239,8 +244,6 @@ class Drawer {
     if (!reach) return;
     const Area area = device_area(*reach, ctm, canvas_.width(), canvas_.height());
     if (area.empty()) return;
-    const std::shared_ptr<Reservation> hold = shared_.reserve(double(area.width()) * area.height());
-    if (!hold) return;  // too many pixels alive already: the group is left out
     Path device_rect;
     device_rect.add_rect(Rect{double(area.x0), double(area.y0), double(area.x1), double(area.y1)});
     canvas_.set_transform(Affine{});
@@ -250,10 +253,17 @@ class Drawer {
     const bool box_needed = uses_box(g.clip.get()) || (!clip_mode_ && uses_box(g.mask.get()));
     const std::optional<Rect> bbox = box_needed ? bounds_of(g, Affine{}) : std::nullopt;
     std::optional<Coverage> mask;
+    std::shared_ptr<Reservation> clip_hold;
     if (g.clip) {
       Path clip_path;
       FillRule rule = FillRule::NonZero;
       if (single_clip_path(*g.clip, bbox, clip_path, rule)) {
+        // The canvas keeps a coverage plane over the clip's pixels unless it is a pixel-aligned rectangle:
+        // counted like an offscreen image (nested viewports on a large image would pile them up).
+        const Area reach_of_clip = intersect(device_area(clip_path.control_bounds(), ctm, canvas_.width(),
+                                                         canvas_.height()), area);
+        clip_hold = shared_.reserve(double(reach_of_clip.width()) * reach_of_clip.height());
+        if (!clip_hold) return;
         canvas_.set_anti_alias(settings_.aa);  // not what the last path drawn left (crispEdges draws aliased)
         canvas_.clip(clip_path, rule);
       } else {
@@ -276,6 +286,8 @@ class Drawer {
       children(g);  // only a clip: no layer needed
       return;
     }
+    const std::shared_ptr<Reservation> hold = shared_.reserve(double(area.width()) * area.height());
+    if (!hold) return;  // too many pixels alive already: the group is left out
     if (mask) {
       options.mask = mask->image;
       options.mask_x = mask->x;
@@ -370,9 +382,16 @@ class Drawer {
     std::shared_ptr<Reservation> hold = shared_.reserve(double(area.width()) * area.height());
     if (!hold) return std::nullopt;
     Offscreen o = offscreen(area, ctm);
-    Path r;
-    r.add_rect(rect);
-    o.canvas->clip(r, FillRule::NonZero);
+    // Clip to the mask rectangle unless it covers the whole offscreen image anyway (a clip that is not
+    // pixel-aligned costs the canvas a coverage plane the size of the image).
+    const Rect device = transformed_rect(rect, ctm);
+    const bool covers = ctm.b == 0 && ctm.c == 0 && device.x0 <= area.x0 && device.y0 <= area.y0 &&
+                        device.x1 >= area.x1 && device.y1 >= area.y1;
+    if (!covers) {
+      Path r;
+      r.add_rect(rect);
+      o.canvas->clip(r, FillRule::NonZero);
+    }
     if (mask.content_units == Units::ObjectBoundingBox) o.canvas->transform(box_transform(*bbox));
     Drawer(*o.canvas, shared_, nesting_ + 1, false).group(*mask.content);
     shared_.stats.exact_fallbacks += o.canvas->exact_fallbacks();
