@@ -183,6 +183,25 @@ TEST(SvgDraw, ImageIsDrawnIntoItsDestinationAndClipped) {
   expect_pixel(img, 5, 5, kClear, 0);
 }
 
+TEST(SvgDraw, CoreLimitNamesTheElement) {
+  // A stroke whose outline is over the core's limit: a ParseError at the element, also from inside a mask.
+  for (const char* wrap : {"%s", "<mask id='m'>%s</mask><rect width='5' height='5' mask='url(#m)'/>"}) {
+    std::string body = wrap;
+    body.replace(body.find("%s"), 2, "\n<circle r='1e155' stroke='red' stroke-width='1e300'/>");
+    const Tree tree = parse_svg_tree("<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'>" + body +
+                                     "</svg>", "limit.svg");
+    Image image(10, 10);
+    try {
+      render_tree(tree, image);
+      ADD_FAILURE() << "no error for " << body;
+    } catch (const ParseError& e) {
+      EXPECT_EQ(e.line(), 2) << e.what();
+      EXPECT_NE(std::string(e.what()).find("limit.svg:2:1: cannot draw the stroke of this element"), std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(SvgDraw, SixteenBitTargetsGetTheSameDrawing) {
   const Tree tree = parse_svg_tree(
       "<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'><g opacity='0.5'>"
