@@ -76,6 +76,18 @@ TEST(SvgDraw, ClipPathChildrenFormAUnion) {
   expect_pixel(img, 80, 50, kGreen, 1);
 }
 
+TEST(SvgDraw, ClipPathChildrenAreGeometryWithTheirClipRule) {
+  // fill='none' does not matter inside a clipPath, clip-rule does (evenodd: a square ring); a <g> is not a
+  // valid child and adds nothing.
+  const Image img = draw(
+      "<clipPath id='c'><path d='M10 10 H90 V90 H10 Z M30 30 H70 V70 H30 Z' fill='none' clip-rule='evenodd'/>"
+      "<g><rect x='40' y='40' width='20' height='20'/></g></clipPath>"
+      "<rect width='100' height='100' fill='green' clip-path='url(#c)'/>");
+  expect_pixel(img, 20, 50, kGreen, 1);
+  expect_pixel(img, 50, 50, kClear, 0);
+  expect_pixel(img, 95, 50, kClear, 0);
+}
+
 TEST(SvgDraw, ClipPathUnitsObjectBoundingBox) {
   // The right half of the rect's box (x 50..80), and with a nested clip-path on the clipPath, its lower half too.
   const Image img = draw(
