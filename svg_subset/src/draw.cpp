@@ -1,4 +1,5 @@
-// svg_subset: drawing the resolved tree on a vraster::Canvas (design notes: docs/design.md, "Drawing the SVG tree").
+// svg_subset: drawing the resolved tree on a vraster::Canvas (design notes: docs/design.md, "SVG: drawing the tree on
+// the canvas").
 //
 // Groups map to save/transform/restore, and to a canvas layer only when an effect needs one (opacity, a blend
 // mode, isolation, a mask, a clip the canvas cannot express as one clip() call). Clip paths and masks become
@@ -10,6 +11,9 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <string>
+#include <variant>
 #include <vector>
 
 #include "svg_subset/svg.hpp"
