@@ -271,12 +271,12 @@ class Drawer {
         canvas_.set_anti_alias(settings_.aa);  // not what the last path drawn left (crispEdges draws aliased)
         canvas_.clip(clip_path, rule);
       } else {
-        mask = clip_coverage(*g.clip, bbox, ctm);
+        mask = clip_coverage(*g.clip, bbox, ctm, area);
         if (!mask) return;  // clipped away
       }
     }
     if (g.mask && !clip_mode_) {
-      std::optional<Coverage> m = mask_coverage(*g.mask, bbox, ctm);
+      std::optional<Coverage> m = mask_coverage(*g.mask, bbox, ctm, area);
       if (!m) return;  // masked away
       if (mask) multiply(*m, *mask);
       mask = std::move(m);
@@ -350,14 +350,16 @@ class Drawer {
   }
 
   /// The clip as coverage: every child path filled into an offscreen image (their union), times the clip on the
-  /// clipPath itself. Nothing: everything is clipped away.
-  std::optional<Coverage> clip_coverage(const ClipPath& clip, const std::optional<Rect>& bbox, const Affine& ctm) {
+  /// clipPath itself, over no more than `limit` (the pixels the clipped group can touch). Nothing: everything is
+  /// clipped away.
+  std::optional<Coverage> clip_coverage(const ClipPath& clip, const std::optional<Rect>& bbox, const Affine& ctm,
+                                        const Area& limit) {
     if (!clip.content || nesting_ >= kMaxNesting) return std::nullopt;
     const std::optional<Affine> m = clip_space(clip, bbox);
     if (!m) return std::nullopt;
     const std::optional<Rect> content = bounds_of(*clip.content, *m);
     if (!content) return std::nullopt;
-    const Area area = device_area(*content, ctm, canvas_.width(), canvas_.height());
+    const Area area = intersect(device_area(*content, ctm, canvas_.width(), canvas_.height()), limit);
     if (area.empty()) return std::nullopt;
     std::shared_ptr<Reservation> hold = shared_.reserve(double(area.width()) * area.height());
     if (!hold) return std::nullopt;
@@ -366,7 +368,7 @@ class Drawer {
     shared_.stats.exact_fallbacks += o.canvas->exact_fallbacks();
     Coverage out{o.image, area.x0, area.y0, std::move(hold)};
     if (clip.clip) {
-      const std::optional<Coverage> inner = clip_coverage(*clip.clip, bbox, ctm);
+      const std::optional<Coverage> inner = clip_coverage(*clip.clip, bbox, ctm, limit);
       if (!inner) return std::nullopt;
       multiply(out, *inner);
     }
@@ -374,14 +376,15 @@ class Drawer {
   }
 
   /// The mask as coverage: its content drawn inside the mask rectangle, turned into luminance or alpha, times
-  /// the mask on the mask element. Nothing: everything is masked away.
-  std::optional<Coverage> mask_coverage(const Mask& mask, const std::optional<Rect>& bbox, const Affine& ctm) {
+  /// the mask on the mask element, over no more than `limit`. Nothing: everything is masked away.
+  std::optional<Coverage> mask_coverage(const Mask& mask, const std::optional<Rect>& bbox, const Affine& ctm,
+                                        const Area& limit) {
     if (!mask.content || nesting_ >= kMaxNesting) return std::nullopt;
     const bool box_units = mask.units == Units::ObjectBoundingBox || mask.content_units == Units::ObjectBoundingBox;
     if (box_units && (!bbox || !usable_box(*bbox))) return std::nullopt;
     const Rect rect = mask.units == Units::ObjectBoundingBox ? map_rect(mask.rect, *bbox) : mask.rect;
     if (!usable_box(rect)) return std::nullopt;
-    const Area area = device_area(rect, ctm, canvas_.width(), canvas_.height());
+    const Area area = intersect(device_area(rect, ctm, canvas_.width(), canvas_.height()), limit);
     if (area.empty()) return std::nullopt;
     std::shared_ptr<Reservation> hold = shared_.reserve(double(area.width()) * area.height());
     if (!hold) return std::nullopt;
@@ -408,7 +411,7 @@ class Drawer {
     }
     Coverage out{o.image, area.x0, area.y0, std::move(hold)};
     if (mask.mask) {
-      const std::optional<Coverage> inner = mask_coverage(*mask.mask, bbox, ctm);
+      const std::optional<Coverage> inner = mask_coverage(*mask.mask, bbox, ctm, limit);
       if (!inner) return std::nullopt;
       multiply(out, *inner);
     }
