@@ -76,6 +76,18 @@ TEST(SvgDraw, ClipPathChildrenFormAUnion) {
   expect_pixel(img, 80, 50, kGreen, 1);
 }
 
+TEST(SvgDraw, ClipPathChildrenAreGeometryWithTheirClipRule) {
+  // fill='none' does not matter inside a clipPath, clip-rule does (evenodd: a square ring); a <g> is not a
+  // valid child and adds nothing.
+  const Image img = draw(
+      "<clipPath id='c'><path d='M10 10 H90 V90 H10 Z M30 30 H70 V70 H30 Z' fill='none' clip-rule='evenodd'/>"
+      "<g><rect x='40' y='40' width='20' height='20'/></g></clipPath>"
+      "<rect width='100' height='100' fill='green' clip-path='url(#c)'/>");
+  expect_pixel(img, 20, 50, kGreen, 1);
+  expect_pixel(img, 50, 50, kClear, 0);
+  expect_pixel(img, 95, 50, kClear, 0);
+}
+
 TEST(SvgDraw, ClipPathUnitsObjectBoundingBox) {
   // The right half of the rect's box (x 50..80), and with a nested clip-path on the clipPath, its lower half too.
   const Image img = draw(
@@ -181,6 +193,25 @@ TEST(SvgDraw, ImageIsDrawnIntoItsDestinationAndClipped) {
   expect_pixel(img, 15, 45, {0, 0, 255, 255}, 0);
   expect_pixel(img, 35, 15, kClear, 0);  // green, clipped
   expect_pixel(img, 5, 5, kClear, 0);
+}
+
+TEST(SvgDraw, CoreLimitNamesTheElement) {
+  // A stroke whose outline is over the core's limit: a ParseError at the element, also from inside a mask.
+  for (const char* wrap : {"%s", "<mask id='m'>%s</mask><rect width='5' height='5' mask='url(#m)'/>"}) {
+    std::string body = wrap;
+    body.replace(body.find("%s"), 2, "\n<circle r='1e155' stroke='red' stroke-width='1e300'/>");
+    const Tree tree = parse_svg_tree("<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'>" + body +
+                                     "</svg>", "limit.svg");
+    Image image(10, 10);
+    try {
+      render_tree(tree, image);
+      ADD_FAILURE() << "no error for " << body;
+    } catch (const ParseError& e) {
+      EXPECT_EQ(e.line(), 2) << e.what();
+      EXPECT_NE(std::string(e.what()).find("limit.svg:2:1: cannot draw the stroke of this element"), std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 TEST(SvgDraw, SixteenBitTargetsGetTheSameDrawing) {

@@ -1,4 +1,5 @@
-// svg_subset: drawing the resolved tree on a vraster::Canvas (design notes: docs/design.md, "Drawing the SVG tree").
+// svg_subset: drawing the resolved tree on a vraster::Canvas (design notes: docs/design.md, "SVG: drawing the tree on
+// the canvas").
 //
 // Groups map to save/transform/restore, and to a canvas layer only when an effect needs one (opacity, a blend
 // mode, isolation, a mask, a clip the canvas cannot express as one clip() call). Clip paths and masks become
@@ -10,6 +11,9 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
+#include <string>
+#include <variant>
 #include <vector>
 
 #include "image_element.hpp"
@@ -105,6 +109,11 @@ struct Area {
   int height() const { return y1 - y0; }
   bool empty() const { return x1 <= x0 || y1 <= y0; }
 };
+
+Area intersect(const Area& a, const Area& b) {
+  const Area r{std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
+  return r.empty() ? Area{} : r;
+}
 
 /// Device pixels that `r` (user space, mapped by `m`) can touch, inside a w x h canvas.
 Area device_area(const Rect& r, const Affine& m, int w, int h) {
@@ -240,8 +249,6 @@ class Drawer {
     if (!reach) return;
     const Area area = device_area(*reach, ctm, canvas_.width(), canvas_.height());
     if (area.empty()) return;
-    const std::shared_ptr<Reservation> hold = shared_.reserve(double(area.width()) * area.height());
-    if (!hold) return;  // too many pixels alive already: the group is left out
     Path device_rect;
     device_rect.add_rect(Rect{double(area.x0), double(area.y0), double(area.x1), double(area.y1)});
     canvas_.set_transform(Affine{});
@@ -251,19 +258,26 @@ class Drawer {
     const bool box_needed = uses_box(g.clip.get()) || (!clip_mode_ && uses_box(g.mask.get()));
     const std::optional<Rect> bbox = box_needed ? bounds_of(g, Affine{}) : std::nullopt;
     std::optional<Coverage> mask;
+    std::shared_ptr<Reservation> clip_hold;
     if (g.clip) {
       Path clip_path;
       FillRule rule = FillRule::NonZero;
       if (single_clip_path(*g.clip, bbox, clip_path, rule)) {
+        // The canvas keeps a coverage plane over the clip's pixels unless it is a pixel-aligned rectangle:
+        // counted like an offscreen image (nested viewports on a large image would pile them up).
+        const Area reach_of_clip = intersect(device_area(clip_path.control_bounds(), ctm, canvas_.width(),
+                                                         canvas_.height()), area);
+        clip_hold = shared_.reserve(double(reach_of_clip.width()) * reach_of_clip.height());
+        if (!clip_hold) return;
         canvas_.set_anti_alias(settings_.aa);  // not what the last path drawn left (crispEdges draws aliased)
         canvas_.clip(clip_path, rule);
       } else {
-        mask = clip_coverage(*g.clip, bbox, ctm);
+        mask = clip_coverage(*g.clip, bbox, ctm, area);
         if (!mask) return;  // clipped away
       }
     }
     if (g.mask && !clip_mode_) {
-      std::optional<Coverage> m = mask_coverage(*g.mask, bbox, ctm);
+      std::optional<Coverage> m = mask_coverage(*g.mask, bbox, ctm, area);
       if (!m) return;  // masked away
       if (mask) multiply(*m, *mask);
       mask = std::move(m);
@@ -277,6 +291,8 @@ class Drawer {
       children(g);  // only a clip: no layer needed
       return;
     }
+    const std::shared_ptr<Reservation> hold = shared_.reserve(double(area.width()) * area.height());
+    if (!hold) return;  // too many pixels alive already: the group is left out
     if (mask) {
       options.mask = mask->image;
       options.mask_x = mask->x;
@@ -335,14 +351,16 @@ class Drawer {
   }
 
   /// The clip as coverage: every child path filled into an offscreen image (their union), times the clip on the
-  /// clipPath itself. Nothing: everything is clipped away.
-  std::optional<Coverage> clip_coverage(const ClipPath& clip, const std::optional<Rect>& bbox, const Affine& ctm) {
+  /// clipPath itself, over no more than `limit` (the pixels the clipped group can touch). Nothing: everything is
+  /// clipped away.
+  std::optional<Coverage> clip_coverage(const ClipPath& clip, const std::optional<Rect>& bbox, const Affine& ctm,
+                                        const Area& limit) {
     if (!clip.content || nesting_ >= kMaxNesting) return std::nullopt;
     const std::optional<Affine> m = clip_space(clip, bbox);
     if (!m) return std::nullopt;
     const std::optional<Rect> content = bounds_of(*clip.content, *m);
     if (!content) return std::nullopt;
-    const Area area = device_area(*content, ctm, canvas_.width(), canvas_.height());
+    const Area area = intersect(device_area(*content, ctm, canvas_.width(), canvas_.height()), limit);
     if (area.empty()) return std::nullopt;
     std::shared_ptr<Reservation> hold = shared_.reserve(double(area.width()) * area.height());
     if (!hold) return std::nullopt;
@@ -351,7 +369,7 @@ class Drawer {
     shared_.stats.exact_fallbacks += o.canvas->exact_fallbacks();
     Coverage out{o.image, area.x0, area.y0, std::move(hold)};
     if (clip.clip) {
-      const std::optional<Coverage> inner = clip_coverage(*clip.clip, bbox, ctm);
+      const std::optional<Coverage> inner = clip_coverage(*clip.clip, bbox, ctm, limit);
       if (!inner) return std::nullopt;
       multiply(out, *inner);
     }
@@ -359,21 +377,29 @@ class Drawer {
   }
 
   /// The mask as coverage: its content drawn inside the mask rectangle, turned into luminance or alpha, times
-  /// the mask on the mask element. Nothing: everything is masked away.
-  std::optional<Coverage> mask_coverage(const Mask& mask, const std::optional<Rect>& bbox, const Affine& ctm) {
+  /// the mask on the mask element, over no more than `limit`. Nothing: everything is masked away.
+  std::optional<Coverage> mask_coverage(const Mask& mask, const std::optional<Rect>& bbox, const Affine& ctm,
+                                        const Area& limit) {
     if (!mask.content || nesting_ >= kMaxNesting) return std::nullopt;
     const bool box_units = mask.units == Units::ObjectBoundingBox || mask.content_units == Units::ObjectBoundingBox;
     if (box_units && (!bbox || !usable_box(*bbox))) return std::nullopt;
     const Rect rect = mask.units == Units::ObjectBoundingBox ? map_rect(mask.rect, *bbox) : mask.rect;
     if (!usable_box(rect)) return std::nullopt;
-    const Area area = device_area(rect, ctm, canvas_.width(), canvas_.height());
+    const Area area = intersect(device_area(rect, ctm, canvas_.width(), canvas_.height()), limit);
     if (area.empty()) return std::nullopt;
     std::shared_ptr<Reservation> hold = shared_.reserve(double(area.width()) * area.height());
     if (!hold) return std::nullopt;
     Offscreen o = offscreen(area, ctm);
-    Path r;
-    r.add_rect(rect);
-    o.canvas->clip(r, FillRule::NonZero);
+    // Clip to the mask rectangle unless it covers the whole offscreen image anyway (a clip that is not
+    // pixel-aligned costs the canvas a coverage plane the size of the image).
+    const Rect device = transformed_rect(rect, ctm);
+    const bool covers = ctm.b == 0 && ctm.c == 0 && device.x0 <= area.x0 && device.y0 <= area.y0 &&
+                        device.x1 >= area.x1 && device.y1 >= area.y1;
+    if (!covers) {
+      Path r;
+      r.add_rect(rect);
+      o.canvas->clip(r, FillRule::NonZero);
+    }
     if (mask.content_units == Units::ObjectBoundingBox) o.canvas->transform(box_transform(*bbox));
     Drawer(*o.canvas, shared_, nesting_ + 1, false).group(*mask.content);
     shared_.stats.exact_fallbacks += o.canvas->exact_fallbacks();
@@ -386,7 +412,7 @@ class Drawer {
     }
     Coverage out{o.image, area.x0, area.y0, std::move(hold)};
     if (mask.mask) {
-      const std::optional<Coverage> inner = mask_coverage(*mask.mask, bbox, ctm);
+      const std::optional<Coverage> inner = mask_coverage(*mask.mask, bbox, ctm, limit);
       if (!inner) return std::nullopt;
       multiply(out, *inner);
     }

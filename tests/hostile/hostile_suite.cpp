@@ -147,6 +147,15 @@ std::vector<Case> cases() {
     }
     out.push_back({"SVG images nested 12 deep", {"render", "IN", "-o", "OUT"}, doc});
   }
+  {
+    // Viewports at fractional positions, 200 deep: each clip is a coverage plane the size of the image.
+    std::string body;
+    for (int i = 0; i < 200; ++i) body += "<svg x=\"0.3\" y=\"0.3\" width=\"99.5\" height=\"99.5\">";
+    body += "<rect width=\"100\" height=\"100\" fill=\"green\"/>";
+    for (int i = 0; i < 200; ++i) body += "</svg>";
+    out.push_back({"200 nested fractional viewports on a 4096 x 4096 image", {"render", "IN", "-o", "OUT", "-w", "4096"},
+                   svg("width=\"100\" height=\"100\"", body)});
+  }
   out.push_back({"accuracy with missing scenes", {"accuracy", "-o", "OUT"}, ""});
   return out;
 }
