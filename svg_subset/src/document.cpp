@@ -1113,7 +1113,8 @@ class Builder {
       warn("unsupported elements", at, "element <" + printable(name) + "> is not supported yet, ignored");
       return;
     }
-    if (in_clip_ && !shape && name != "use") return;  // a clipPath's children: shapes and uses of shapes only
+    // A clipPath's children: shapes, text and uses of shapes only.
+    if (in_clip_ && !shape && name != "use" && name != "text") return;
     const Style style = computed(node, parent);
     if (!style.displayed) return;  // display: none hides the whole subtree
 
@@ -1681,7 +1682,9 @@ class Builder {
   detail::SpanStyle span_style(const Style& s) {
     detail::SpanStyle out;
     out.text = s.text;
-    if (s.visible) {
+    if (in_clip_) {  // clip geometry, as path_node: filled with the clip-rule, never stroked
+      if (s.visible) out.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1}, s.clip_rule};
+    } else if (s.visible) {
       const Paint fill = resolve_paint(s.fill, s.fill_opacity, s);
       if (fill.kind != Paint::Kind::None) out.fill = Fill{fill, s.fill_rule};
       const Paint stroke = s.stroke_style.width > 0 ? resolve_paint(s.stroke, s.stroke_opacity, s) : Paint{};
