@@ -107,6 +107,24 @@ TEST(SvgTree, UseIsExpandedWithTranslate) {
   expect_rgba(path_at(use, 0).fill->paint.color, 0, 0, 255);
 }
 
+TEST(SvgTree, TransformOriginMovesTheFixedPoint) {
+  // rotate(90) around (10, 20): translate(10 20) rotate(90) translate(-10 -20) = [0 1 -1 0 30 10].
+  const Tree t = tree("<rect width='5' height='5' transform='rotate(90)' transform-origin='10 20'/>"
+                      "<rect width='5' height='5' transform='scale(2)' transform-origin='right bottom'/>"
+                      "<rect width='5' height='5' transform='scale(2)' transform-origin='top 25%'/>"
+                      "<rect width='5' height='5' transform='scale(2)' transform-origin='bogus'/>"
+                      "<linearGradient id='g' gradientTransform='scale(2)' transform-origin='0.5 0.5'/>",
+                      "viewBox='0 0 200 100'");
+  ASSERT_EQ(t.root.children.size(), 4u);
+  expect_affine(group_at(t.root, 0).transform, 0, 1, -1, 0, 30, 10);
+  expect_affine(group_at(t.root, 1).transform, 2, 0, 0, 2, -200, -100);  // right bottom = (200, 100)
+  expect_affine(group_at(t.root, 2).transform, 2, 0, 0, 2, -50, 0);      // y keyword first: (25%, top)
+  expect_affine(group_at(t.root, 3).transform, 2, 0, 0, 2, 0, 0);        // invalid: ignored
+  bool warned = false;
+  for (const std::string& w : t.warnings) warned = warned || w.find("transform-origin") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
 TEST(SvgTree, UseOfSymbolMakesAViewport) {
   const Tree t = tree("<symbol id='s' viewBox='0 0 10 10'><rect width='10' height='10'/></symbol>"
                       "<use href='#s' x='5' width='20' height='40'/>");

@@ -940,7 +940,71 @@ class Builder {
         own = Affine{};
       }
     }
-    return own;
+    return around_origin(node, own);
+  }
+
+  /// `m` applied around the element's transform-origin (SVG 2 / CSS Transforms: translate(origin) m
+  /// translate(-origin)). The origin is one or two of: a length, a percentage of the viewport, left, center,
+  /// right, top, bottom (a third, z, value is ignored); an invalid one is ignored with a warning.
+  Affine around_origin(pugi::xml_node node, const Affine& m) {
+    const pugi::xml_attribute attr = node.attribute("transform-origin");
+    if (!attr || m.is_identity()) return m;
+    std::vector<std::string_view> parts;
+    const std::string_view v = trim(attr.value());
+    for (std::size_t i = 0; i < v.size();) {
+      while (i < v.size() && v[i] == ' ') ++i;
+      const std::size_t start = i;
+      while (i < v.size() && v[i] != ' ') ++i;
+      if (i > start) parts.push_back(v.substr(start, i - start));
+    }
+    // A keyword's axis and position as a fraction of the viewport; a length or percentage fits either axis.
+    struct Part {
+      char axis;  // 'x', 'y' or '?'
+      double fraction = 0;
+      std::string_view length;
+    };
+    auto read = [](std::string_view t) {
+      if (t == "left") return Part{'x', 0, {}};
+      if (t == "right") return Part{'x', 1, {}};
+      if (t == "top") return Part{'y', 0, {}};
+      if (t == "bottom") return Part{'y', 1, {}};
+      if (t == "center") return Part{'c', 0.5, {}};
+      return Part{'?', 0, t};
+    };
+    if (parts.empty() || parts.size() > 3) {
+      warn("invalid values", value_offset(attr), "invalid transform-origin " + quoted(v) + ", ignored");
+      return m;
+    }
+    Part x{'c', 0.5, {}}, y{'c', 0.5, {}};
+    const Part first = read(parts[0]);
+    const Part second = parts.size() > 1 ? read(parts[1]) : Part{'c', 0.5, {}};
+    if (first.axis == 'y' || second.axis == 'x') {
+      x = second;
+      y = first;
+    } else {
+      x = first;
+      y = second;
+    }
+    double origin[2] = {0, 0};
+    const Part* axes[2] = {&x, &y};
+    for (int k = 0; k < 2; ++k) {
+      const Part& p = *axes[k];
+      const Axis axis = k == 0 ? Axis::X : Axis::Y;
+      if (p.axis == '?') {
+        if (!parse_length(p.length, axis, origin[k])) {
+          warn("invalid values", value_offset(attr), "invalid transform-origin " + quoted(v) + ", ignored");
+          return m;
+        }
+      } else if ((k == 0 && p.axis == 'y') || (k == 1 && p.axis == 'x')) {
+        warn("invalid values", value_offset(attr), "invalid transform-origin " + quoted(v) + ", ignored");
+        return m;
+      } else {
+        double full = 0;
+        parse_length("100%", axis, full);
+        origin[k] = p.fraction * full;
+      }
+    }
+    return Affine::translate(origin[0], origin[1]) * m * Affine::translate(-origin[0], -origin[1]);
   }
 
   // ---- elements ----
@@ -1814,6 +1878,14 @@ class Builder {
     return {};
   }
 
+  /// The element of an href chain an attribute comes from (its transform-origin goes with it).
+  static pugi::xml_node chain_owner(const std::vector<pugi::xml_node>& chain, const char* name) {
+    for (const pugi::xml_node n : chain) {
+      if (n.attribute(name)) return n;
+    }
+    return {};
+  }
+
   static Units units_of(pugi::xml_attribute a, Units fallback) {
     if (!a) return fallback;
     const std::string_view v = trim(a.value());
@@ -1851,6 +1923,7 @@ class Builder {
         warn("invalid values", value_offset(t), "invalid gradientTransform " + quoted(t.value()) + ", ignored");
         g->transform = Affine{};
       }
+      g->transform = around_origin(chain_owner(chain, "gradientTransform"), g->transform);
     }
     if (const pugi::xml_attribute s = chain_attribute(chain, "spreadMethod")) {
       const std::string_view v = trim(s.value());
@@ -1911,6 +1984,7 @@ class Builder {
     p->content_units = units_of(chain_attribute(chain, "patternContentUnits"), Units::UserSpaceOnUse);
     if (const pugi::xml_attribute t = chain_attribute(chain, "patternTransform")) {
       if (!parse_transform(t.value(), p->transform)) p->transform = Affine{};
+      p->transform = around_origin(chain_owner(chain, "patternTransform"), p->transform);
     }
     auto get = [&](const char* name, Axis axis) {
       return server_length(chain_attribute(chain, name), p->units, axis).value_or(0);
