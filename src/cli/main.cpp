@@ -267,7 +267,7 @@ svg::DrawSettings draw_settings(const RenderArgs& a) {
 }
 
 /// Everything else: the resolved tree drawn on a canvas (paint servers, clips, masks, layers, blend modes),
-/// recorded once as a scene, planned (each frame: planning is part of the render) and replayed.
+/// recorded once as a scene, analysed once (the plan) and replayed for each frame.
 template <class T>
 void render_tree(const svg::Tree& tree, const RenderArgs& a) {
   const auto [w, h] = svg::tree_output_size(tree, a.width, a.height);
@@ -275,14 +275,10 @@ void render_tree(const svg::Tree& tree, const RenderArgs& a) {
   const Scene scene = svg::record_tree(tree, w, h, draw_settings(a), &recorded);
   std::uint64_t fallbacks = recorded.exact_fallbacks;
   const bool over_budget = recorded.over_budget;
+  const std::optional<ScenePlan> plan = a.plan ? std::optional<ScenePlan>(plan_scene(scene)) : std::nullopt;
   render_frames<T>(w, h, a, [&](BasicImage<T>& image) {
     Canvas canvas(image);
-    if (a.plan) {
-      const ScenePlan plan = plan_scene(scene);
-      canvas.draw_scene(scene, &plan);
-    } else {
-      canvas.draw_scene(scene);
-    }
+    canvas.draw_scene(scene, plan ? &*plan : nullptr);
     fallbacks += canvas.exact_fallbacks();
   });
   warn_about_exact_fallbacks(fallbacks);
