@@ -248,15 +248,24 @@ TEST(SvgTree, ClipPathAndMaskRecords) {
   EXPECT_EQ(g.mask->rect.y1, 6);
 }
 
-TEST(SvgTree, ClipPathReferenceLoopClipsEverything) {
+TEST(SvgTree, AReferenceLoopDropsOnlyTheReferenceThatClosesIt) {
+  // clip c's child refers back to c: that reference is ignored, so c clips to its child's rectangle. A mask on
+  // itself likewise masks with its content.
   const Tree t = tree("<clipPath id='c'><rect width='1' height='1' clip-path='url(#c)'/></clipPath>"
-                      "<rect width='5' height='5' clip-path='url(#c)'/>");
-  const Group& g = group_at(t.root, 0);
-  ASSERT_TRUE(g.clip);
-  EXPECT_EQ(g.clip->content, nullptr);
-  EXPECT_TRUE(to_document(t).items.empty());
-  ASSERT_FALSE(t.warnings.empty());
-  EXPECT_NE(t.warnings[0].find("reference loop"), std::string::npos) << t.warnings[0];
+                      "<mask id='m' mask='url(#m)'><rect width='5' height='5' fill='white'/></mask>"
+                      "<rect width='5' height='5' clip-path='url(#c)'/><rect width='5' height='5' mask='url(#m)'/>");
+  const Group& clipped = group_at(t.root, 0);
+  ASSERT_TRUE(clipped.clip);
+  ASSERT_NE(clipped.clip->content, nullptr);
+  ASSERT_EQ(clipped.clip->content->children.size(), 1u);
+  EXPECT_FALSE(path_at(*clipped.clip->content, 0).path.empty());
+  const Group& masked = group_at(t.root, 1);
+  ASSERT_TRUE(masked.mask);
+  ASSERT_NE(masked.mask->content, nullptr);
+  EXPECT_EQ(masked.mask->mask, nullptr);
+  int loops = 0;
+  for (const std::string& w : t.warnings) loops += w.find("reference loop") != std::string::npos;
+  EXPECT_EQ(loops, 2);
 }
 
 TEST(SvgTree, UseLoopsAreSkippedWithAWarning) {

@@ -2010,13 +2010,9 @@ class Builder {
     return p;
   }
 
-  /// Whether `node` is being resolved already (a reference loop); if so every element of the loop is marked
-  /// invalid: a clip path or mask in a loop clips or masks everything, as resvg and browsers do.
+  /// Whether `node` is being resolved already: the reference being followed would close a loop.
   bool in_loop(pugi::xml_node node) {
-    const auto it = std::find(resolving_.begin(), resolving_.end(), node);
-    if (it == resolving_.end()) return false;
-    for (auto i = it; i != resolving_.end(); ++i) invalid_.insert(i->internal_object());
-    return true;
+    return std::find(resolving_.begin(), resolving_.end(), node) != resolving_.end();
   }
 
   std::shared_ptr<const ClipPath> clip_path(const std::string& id) {
@@ -2028,9 +2024,10 @@ class Builder {
     const auto cached = clips_.find(node.internal_object());
     if (cached != clips_.end()) return cached->second;
     if (in_loop(node)) {
+      // The reference that closes the loop is dropped; the rest of the loop applies (as resvg and browsers do).
       warn("references", element_offset(node), "clipPath " + quoted(id) + " refers to itself (a reference loop); "
-                                                "what it clips is not drawn");
-      return std::make_shared<ClipPath>(ClipPath{id, Units::UserSpaceOnUse, Affine{}, nullptr, nullptr});
+                                                "the reference that closes the loop is ignored");
+      return nullptr;
     }
     resolving_.push_back(node);
     auto clip = std::make_shared<ClipPath>();
@@ -2047,7 +2044,6 @@ class Builder {
     clip->content = std::move(content);
     if (!s.clip_path.empty()) clip->clip = clip_path(s.clip_path);
     resolving_.pop_back();
-    if (invalid_.count(node.internal_object())) clip->content = nullptr;  // part of a loop: clips everything
     clips_.emplace(node.internal_object(), clip);
     return clip;
   }
@@ -2062,10 +2058,8 @@ class Builder {
     if (cached != masks_.end()) return cached->second;
     if (in_loop(node)) {
       warn("references", element_offset(node), "mask " + quoted(id) + " refers to itself (a reference loop); "
-                                                "what it masks is not drawn");
-      Mask empty;
-      empty.id = id;
-      return std::make_shared<Mask>(std::move(empty));
+                                                "the reference that closes the loop is ignored");
+      return nullptr;
     }
     resolving_.push_back(node);
     auto m = std::make_shared<Mask>();
@@ -2089,7 +2083,6 @@ class Builder {
     m->content = std::move(content);
     if (!s.mask.empty()) m->mask = mask(s.mask);
     resolving_.pop_back();
-    if (invalid_.count(node.internal_object())) m->content = nullptr;  // part of a loop: masks everything
     masks_.emplace(node.internal_object(), m);
     return m;
   }
@@ -2127,7 +2120,6 @@ class Builder {
   std::unordered_map<const void*, std::shared_ptr<const Pattern>> patterns_;
   std::unordered_map<const void*, std::shared_ptr<const ClipPath>> clips_;
   std::unordered_map<const void*, std::shared_ptr<const Mask>> masks_;
-  std::unordered_set<const void*> invalid_;  // clip paths and masks found in a reference loop
   bool warned_filter_ = false;
   bool in_clip_ = false;  // building a clipPath's content: geometry only (reset inside masks and patterns)
   struct WarningCount {
