@@ -22,7 +22,8 @@
 
 namespace vraster {
 
-/// The part of the canvas state a recorded call draws with (everything save() pushes but the clip).
+/// The part of the canvas state a recorded call draws with (everything save() pushes but the clip; the canvas's
+/// own state extends it).
 struct SceneState {
   Affine transform;
   Paint fill_paint, stroke_paint;

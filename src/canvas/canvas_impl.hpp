@@ -65,21 +65,9 @@ struct Clip {
   std::shared_ptr<const ClipMask> mask;
 };
 
-/// Everything save() pushes.
-struct State {
-  Affine transform;
+/// Everything save() pushes: what a draw call draws with (the part a recorded scene keeps per call) and the clip.
+struct State : SceneState {
   Clip clip;
-  Paint fill_paint, stroke_paint;
-  StrokeStyle line;
-  float global_alpha = 1;
-  CompositeOp op = CompositeOp::SourceOver;
-  FillRule rule = FillRule::NonZero;
-  AntiAlias aa = AntiAlias::Analytic;
-  double tolerance = kDefaultTolerance;
-  bool smoothing = true;
-  ImageFilter filter = ImageFilter::Bilinear;
-  Shadow shadow;
-  double z = 0;  // 2.5D depth of recorded calls (order_by_depth)
   std::shared_ptr<const SceneClip> recorded_clip;  // recording: the clips in force, as geometry
 };
 

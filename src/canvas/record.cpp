@@ -15,10 +15,8 @@ namespace vraster {
 SceneCommand& Canvas::Impl::record(SceneCommand::Kind kind) {
   SceneCommand c;
   c.kind = kind;
-  const State& s = state;
-  c.state = SceneState{s.transform, s.fill_paint, s.stroke_paint, s.line,   s.global_alpha, s.op,   s.rule,
-                       s.aa,        s.tolerance,  s.smoothing,    s.filter, s.shadow,       s.z};
-  c.clip = s.recorded_clip;
+  c.state = state;  // the SceneState part
+  c.clip = state.recorded_clip;
   recording->commands.push_back(std::move(c));
   return recording->commands.back();
 }
@@ -76,19 +74,10 @@ void Canvas::draw_scene(const Scene& scene, const ScenePlan* plan) {
     }
   };
   auto use_state = [&](const SceneState& r, const PlanDecision* d) {
-    Impl::State& st = s.state;
-    st.transform = r.transform;
-    st.fill_paint = r.fill_paint;
-    st.stroke_paint = r.stroke_paint;
-    st.line = r.line;
-    st.global_alpha = d ? r.global_alpha * d->alpha_scale : r.global_alpha;
-    st.op = r.op;
-    st.rule = r.rule;
-    st.aa = d && d->aliased ? AntiAlias::None : r.aa;
-    st.tolerance = r.tolerance;
-    st.smoothing = r.smoothing;
-    st.filter = r.filter;
-    st.shadow = r.shadow;
+    SceneState& st = s.state;  // everything but the clip
+    st = r;
+    if (d) st.global_alpha *= d->alpha_scale;
+    if (d && d->aliased) st.aa = AntiAlias::None;
   };
 
   for (std::size_t i = 0; i < scene.commands.size(); ++i) {

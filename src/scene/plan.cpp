@@ -208,7 +208,8 @@ class Planner {
           break;
         }
         box = touching(r, 1, everywhere);
-        if (s.op == CompositeOp::Copy || s.op == CompositeOp::Clear) may_overwrite_ = may_overwrite_at_[index] = true;
+        if (s.op == CompositeOp::Copy || s.op == CompositeOp::Clear) may_overwrite_at_[index] = 1;
+        may_overwrite_ = may_overwrite_ || may_overwrite_at_[index];
         break;
       }
       case Kind::Stroke: {
@@ -272,7 +273,8 @@ class Planner {
       const PixelBox region = open.empty() ? canvas_ : plan_.decisions[open.back()].bounds;
       unclipped_[i] = own_box(c, i);
       if (c.kind == Kind::PutPixels) {
-        may_overwrite_ = may_overwrite_at_[i] = true;
+        may_overwrite_at_[i] = 1;
+        may_overwrite_ = true;
         d.bounds = intersect(unclipped_[i], canvas_);  // put_pixels ignores clips and layers
       } else if (c.kind == Kind::Fxaa || c.kind == Kind::FloodFill) {
         d.bounds = canvas_;

@@ -135,11 +135,7 @@ std::size_t FontDb::add_file(const std::string& path) {
     throw;
   }
   FT_Done_FreeType(library);
-  loaded_.resize(faces_.size());
-  broken_.resize(faces_.size());
-  fallback_cache_.clear();
-  match_cache_.clear();
-  family_cache_.clear();
+  faces_changed();
   return added;
 }
 
@@ -169,8 +165,13 @@ void FontDb::add_embedded_default() {
   FaceInfo info;
   info.family = font->family_name();
   faces_.push_back(info);
-  loaded_.push_back(font);
-  broken_.push_back(false);
+  faces_changed();
+  loaded_.back() = font;
+}
+
+void FontDb::faces_changed() {
+  loaded_.resize(faces_.size());
+  broken_.resize(faces_.size());
   fallback_cache_.clear();
   match_cache_.clear();
   family_cache_.clear();
@@ -237,11 +238,7 @@ std::size_t FontDb::add_system_fonts() {
     }
     FcPatternDestroy(want);
   }
-  loaded_.resize(faces_.size());
-  broken_.resize(faces_.size());
-  fallback_cache_.clear();
-  match_cache_.clear();
-  family_cache_.clear();
+  faces_changed();
   return added;
 }
 

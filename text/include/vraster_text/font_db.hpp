@@ -85,6 +85,8 @@ class FontDb {
   FontList fonts_for(const FontQuery& query, std::u32string_view text);
 
  private:
+  /// After faces were added: per-face slots for the new ones, and every cached answer forgotten.
+  void faces_changed();
   int match_uncached(const FontQuery& query);
   int best_of(const std::vector<int>& candidates, const FontQuery& query) const;
   std::vector<int> family_candidates(std::string_view family) const;
