@@ -2,6 +2,10 @@
 //
 //   vraster_plan_bench [--frames N] [--scene NAME]... [SCENE.svg...]
 //
+// A mesh scene (100,000 triangles with depth) shows the planner drawing opaque z-buffered meshes front to back.
+// The frame columns redraw the scene into the image it was last drawn into: draw_frame clears and draws only the
+// tiles touched (the scene touching 5% of the canvas is where that shows).
+//
 // Each scene is recorded once (Canvas over a Scene) and analysed once (plan_scene, timed on its own), then
 // rendered the naive way (draw_scene without a plan) and the planned way (draw_scene with the plan), frame by
 // frame alternating, median of N frames each after a warm-up. A third render replays only the calls the plan keeps, naively: the
@@ -19,6 +23,7 @@
 
 #include "svg_subset/svg.hpp"
 #include "vraster/canvas.hpp"
+#include "vraster/mesh_io.hpp"
 #include "vraster/scene.hpp"
 
 using namespace vraster;
@@ -98,6 +103,32 @@ std::vector<BenchScene> built_in() {
                      c.fill();
                    }
                  })});
+  out.push_back({"mesh_100k_depth", "40 lit spheres (Phong, z-buffer) in one mesh of 100,000 triangles, in random order",
+                 record(1024, 1024, [](Canvas& c) {
+                   std::mt19937 rng(5);
+                   std::uniform_real_distribution<double> pos(100, 924), rad(60, 200), depth(0, 40);
+                   const MeshModel sphere = make_sphere(25, 50);  // 2,500 triangles
+                   Mesh mesh;
+                   for (int k = 0; k < 40; ++k) {
+                     const double r = rad(rng), cx = pos(rng), cy = pos(rng), dz = depth(rng);
+                     const int side = static_cast<int>(2 * r);
+                     Camera camera;
+                     camera.margin = 0;
+                     const Mesh one = project(sphere, camera, side, side, random_colour(rng, 1));
+                     const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+                     for (MeshVertex v : one.vertices) {
+                       v.position.x += cx - r;
+                       v.position.y += cy - r;
+                       v.depth += dz;
+                       mesh.vertices.push_back(v);
+                     }
+                     for (const auto& t : one.triangles) mesh.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+                   }
+                   MeshOptions options;
+                   options.shading = Shading::Phong;
+                   options.lighting.enabled = true;
+                   c.draw_mesh(mesh, options);
+                 })});
   return out;
 }
 
@@ -150,7 +181,7 @@ void run(const BenchScene& s, int frames) {
   Canvas canvas(image);
   const ScenePlan plan = plan_scene(s.scene);
   const Scene kept = kept_only(s.scene, plan);
-  std::vector<double> naive, planned, plan_only, kept_times;
+  std::vector<double> naive, planned, plan_only, kept_times, frame_naive, frame_tiles;
   for (int f = -1; f < frames; ++f) {  // frame -1 warms up
     image.clear(Color::transparent());
     double t0 = now_ms();
@@ -169,20 +200,35 @@ void run(const BenchScene& s, int frames) {
     t0 = now_ms();
     canvas.draw_scene(kept);
     const double t_kept = now_ms() - t0;
+
+    // Whole frames redrawn into one image: everything cleared and drawn naively, against draw_frame, which
+    // clears and redraws only the tiles this frame and the one before touch.
+    t0 = now_ms();
+    image.clear(Color::transparent());
+    canvas.draw_scene(s.scene);
+    const double t_frame_naive = now_ms() - t0;
+    draw_frame(image, Color::transparent(), s.scene, plan, nullptr);  // the frame before: this scene
+    t0 = now_ms();
+    draw_frame(image, Color::transparent(), s.scene, plan, &plan);
+    const double t_frame_tiles = now_ms() - t0;
     if (f >= 0) {
       naive.push_back(t_naive);
       planned.push_back(t_planned);
       plan_only.push_back(t_plan);
       kept_times.push_back(t_kept);
+      frame_naive.push_back(t_frame_naive);
+      frame_tiles.push_back(t_frame_tiles);
     }
   }
   const double n = median(naive), p = median(planned), k = median(kept_times), pl = median(plan_only);
   const double culled_work = n - k;
   char overhead[32] = "-";
   if (plan.culled > 0 && culled_work > 0) std::snprintf(overhead, sizeof overhead, "%.1f%%", 100 * (p - k) / culled_work);
-  std::printf("| %s | %zu | %d | %d+%d | %.2f | %.2f | %.2f | %.3f | %.2f | %s | %s |\n", s.name.c_str(),
-              s.scene.commands.size(), plan.culled, plan.layers_dropped, plan.layers_folded, n, p, k, pl, n / p,
-              overhead, s.what.c_str());
+  const double fn = median(frame_naive), ft = median(frame_tiles);
+  std::printf("| %s | %zu | %d | %d+%d | %.2f | %.2f | %.2f | %.3f | %.2f | %s | %d/%d | %.2f | %.2f | %.2f | %s |\n",
+              s.name.c_str(), s.scene.commands.size(), plan.culled, plan.layers_dropped, plan.layers_folded, n, p, k,
+              pl, n / p, overhead, plan.touched_tile_count(), plan.tiles_x * plan.tiles_y, fn, ft, fn / ft,
+              s.what.c_str());
   std::fflush(stdout);
 }
 
@@ -205,8 +251,11 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("frames %d (median); ms per frame; planned = draw_scene(plan), the plan made once (plan ms)\n\n", frames);
+  std::printf("frame ms: the same scene redrawn into one image, cleared whole and drawn naively, against draw_frame "
+              "(clears and draws only the tiles touched)\n\n");
   std::printf("| scene | calls | culled | layers dropped+folded | naive ms | planned ms | kept-only ms | plan ms | "
-              "naive / planned | culled calls' cost | what |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+              "naive / planned | culled calls' cost | tiles touched | frame ms naive | frame ms tiles | ratio | what |\n"
+              "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
   try {
     for (const BenchScene& s : built_in()) {
       if (!wanted.empty() && std::find(wanted.begin(), wanted.end(), s.name) == wanted.end()) continue;

@@ -194,6 +194,16 @@ if(NOT OUT MATCHES "^frames=2 ms_per_frame_median=[0-9.]+ ms_min=[0-9.]+\n$")
   fail("--bench 2 -o: stdout is not exactly one line")
 endif()
 expect_png("--bench 2 with -o" "${WORK}/bench.png" 8 6 8)
+# Frames after the first redraw only the tiles the plan touches (draw_frame): the image is the one-frame render.
+run_vraster(render "${DATA}/corner.svg" -o corner_once.png --background "#eeeedd")
+expect_status("corner once" 0)
+run_vraster(render "${DATA}/corner.svg" --bench 3 -o corner_frames.png --background "#eeeedd")
+expect_status("corner --bench 3" 0)
+file(SHA256 "${WORK}/corner_once.png" once_hash)
+file(SHA256 "${WORK}/corner_frames.png" frames_hash)
+if(NOT once_hash STREQUAL frames_hash)
+  fail("--bench 3: the last of three frames differs from a single render")
+endif()
 
 # --- mesh, shading, depth ---
 run_vraster(mesh "${SRC}/../samples/colour_wheel.vmesh" -o wheel.png --aa)

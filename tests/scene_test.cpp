@@ -12,6 +12,7 @@
 
 #include "vraster/canvas.hpp"
 #include "vraster/error.hpp"
+#include "vraster/mesh.hpp"
 #include "vraster/scene.hpp"
 
 using namespace vraster;
@@ -75,7 +76,7 @@ void random_scene(Canvas& c, unsigned seed) {
   const int calls = 8 + pick(20);
   int depth = 0, layers = 0;
   for (int k = 0; k < calls; ++k) {
-    switch (pick(12)) {
+    switch (pick(13)) {
       case 0:
       case 1:
         c.set_fill_color(colour(pick(2) == 0));
@@ -156,6 +157,24 @@ void random_scene(Canvas& c, unsigned seed) {
           c.clear_rect(uni(0, 50), uni(0, 50), uni(2, 20), uni(2, 20));
         }
         break;
+      case 12: {  // a small mesh, opaque or not, with or without depth
+        Mesh mesh;
+        const bool opaque = pick(2) == 0;
+        for (int v = 0; v < 6; ++v) {
+          MeshVertex vertex;
+          vertex.position = {uni(-5, 69), uni(-5, 69)};
+          vertex.depth = uni(0, 1);
+          vertex.color = colour(opaque);
+          mesh.vertices.push_back(vertex);
+        }
+        mesh.triangles = {{0, 1, 2}, {3, 4, 5}, {0, 2, 4}};
+        MeshOptions options;
+        options.shading = pick(2) ? Shading::Gouraud : Shading::Flat;
+        options.depth = pick(2) ? DepthMode::ZBuffer : DepthMode::None;
+        options.antialias = pick(3) == 0;
+        c.draw_mesh(mesh, options);
+        break;
+      }
     }
   }
 }
@@ -440,4 +459,266 @@ TEST(SceneDepth, CallsAreDrawnInIncreasingZAndLayersMoveAsOneBlock) {
     rect(c, green, 10);
   });
   EXPECT_EQ(max_difference(replayed(order_by_depth(equal), nullptr), replayed(equal, nullptr)), 0);
+}
+
+namespace {
+
+/// A soup of opaque triangles over each other (every triangle overlaps many), with exact depth ties: triangles
+/// repeated with another colour at the same depths, and triangles in one plane.
+Mesh overlapping_soup(unsigned seed, int triangles, double size) {
+  std::mt19937 rng(seed);
+  auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng); };
+  Mesh mesh;
+  for (int t = 0; t < triangles; ++t) {
+    const double cx = uni(0, size), cy = uni(0, size), r = uni(size / 8, size / 3);
+    // Surfaces of real meshes: each triangle near one depth, a third of them in the plane z = 0.5 (ties).
+    const bool in_plane = rng() % 3 == 0;
+    const double base = uni(0, 1);
+    const bool tie = t > 0 && rng() % 4 == 0;  // the previous triangle again, another colour, the same depths
+    for (int k = 0; k < 3; ++k) {
+      MeshVertex v;
+      if (tie) {
+        v = mesh.vertices[mesh.vertices.size() - 3];
+      } else {
+        v.position = {cx + r * std::cos(uni(0, 6.3)), cy + r * std::sin(uni(0, 6.3))};
+        // In the plane: depths within 1e-8 of 0.5, which all round to the same float depth, but give the
+        // triangles different nearest vertices (so the nearest-first order is not the given one among them).
+        v.depth = in_plane ? 0.5 + uni(-1e-8, 1e-8) : base + uni(-0.05, 0.05);
+        v.normal = {static_cast<float>(uni(-1, 1)), static_cast<float>(uni(-1, 1)), -1};
+      }
+      v.color = {static_cast<float>(uni(0, 1)), static_cast<float>(uni(0, 1)), static_cast<float>(uni(0, 1)), 1};
+      mesh.vertices.push_back(v);
+    }
+    const auto i = static_cast<std::uint32_t>(3 * t);
+    mesh.triangles.push_back({i, i + 1, i + 2});
+  }
+  return mesh;
+}
+
+}  // namespace
+
+TEST(SceneMesh, FrontToBackDrawsExactlyTheGivenOrdersPictureAndShadesLess) {
+  std::int64_t shaded_naive = 0, shaded_planned = 0;
+  for (unsigned seed = 1; seed <= 40; ++seed) {
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    const Mesh mesh = overlapping_soup(seed, 60, 48);
+    for (const Shading shading : {Shading::Flat, Shading::Gouraud, Shading::Phong}) {
+      MeshOptions options;
+      options.shading = shading;
+      options.lighting.enabled = true;
+      // Half the runs start from a depth buffer something else wrote, which keeps its pixels on ties.
+      DepthBuffer given(48, 48), ordered(48, 48);
+      if (seed % 2 == 0) {
+        for (int y = 0; y < 48; ++y) {
+          for (int x = 0; x < 48; ++x) given.row(y)[x] = ordered.row(y)[x] = (x + y) % 3 == 0 ? 0.5f : DepthBuffer::kFar;
+        }
+      }
+      Image a(48, 48), b(48, 48);
+      a.clear(Color::transparent());
+      b.clear(Color::transparent());
+      MeshRenderer renderer;
+      renderer.draw(a, mesh, options, &given);
+      const MeshStats naive = renderer.stats();
+      options.front_to_back = true;
+      renderer.draw(b, mesh, options, &ordered);
+      const MeshStats planned = renderer.stats();
+      EXPECT_TRUE(planned.drew_front_to_back);
+      EXPECT_EQ(a.data, b.data);
+      for (int y = 0; y < 48; ++y) {
+        for (int x = 0; x < 48; ++x) ASSERT_EQ(given.at(x, y), ordered.at(x, y)) << x << "," << y;
+      }
+      EXPECT_EQ(naive.fragments, planned.fragments);
+      shaded_naive += naive.fragments_shaded;
+      shaded_planned += planned.fragments_shaded;
+    }
+  }
+  // Nearest first is a heuristic for triangles that span depths (a single mesh may shade a little more), but
+  // over many it shades clearly less.
+  EXPECT_LT(shaded_planned * 10, shaded_naive * 9) << shaded_planned << " of " << shaded_naive;
+}
+
+TEST(SceneMesh, FrontToBackIsIgnoredWhereTheOrderMatters) {
+  Mesh mesh = overlapping_soup(7, 30, 40);
+  MeshOptions options;
+  options.front_to_back = true;
+  MeshRenderer renderer;
+  Image image(40, 40);
+  mesh.vertices[4].color.a = 0.5f;  // one translucent vertex: blending order matters
+  renderer.draw(image, mesh, options);
+  EXPECT_FALSE(renderer.stats().drew_front_to_back);
+  mesh.vertices[4].color.a = 1;
+  options.write_depth = false;
+  renderer.draw(image, mesh, options);
+  EXPECT_FALSE(renderer.stats().drew_front_to_back);
+  options.write_depth = true;
+  options.depth = DepthMode::Painter;
+  renderer.draw(image, mesh, options);
+  EXPECT_FALSE(renderer.stats().drew_front_to_back);
+  options.depth = DepthMode::ZBuffer;
+  renderer.draw(image, mesh, options);
+  EXPECT_TRUE(renderer.stats().drew_front_to_back);
+}
+
+TEST(SceneMesh, TheCanvasDrawsAMeshAsTheSameRectangleFilled) {
+  // Two aliased triangles making the rectangle [8, 40) x [4, 28) after the transform: the same pixels as
+  // fill_rect, under a rectangular clip, with an operator (through a layer) and with global alpha.
+  Mesh mesh;
+  for (const Point p : {Point{4, 2}, Point{20, 2}, Point{20, 14}, Point{4, 14}}) {
+    MeshVertex v;
+    v.position = p;
+    v.color = {0.2f, 0.6f, 1, 1};
+    mesh.vertices.push_back(v);
+  }
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  MeshOptions options;
+  options.shading = Shading::Flat;
+  for (const CompositeOp op : {CompositeOp::SourceOver, CompositeOp::Xor, CompositeOp::Copy}) {
+    for (const float alpha : {1.f, 0.5f}) {
+      SCOPED_TRACE(std::string(to_string(op)) + " alpha " + std::to_string(alpha));
+      auto scene = [&](Canvas& c, bool as_mesh) {
+        c.set_fill_color({1, 0, 0, 0.75f});
+        c.fill_rect(0, 0, 48, 32);
+        c.rect(12, 0, 40, 20);
+        c.clip();
+        c.set_composite(op);
+        c.set_global_alpha(alpha);
+        c.scale(2, 2);
+        if (as_mesh) {
+          c.draw_mesh(mesh, options);
+        } else {
+          c.set_fill_color({0.2f, 0.6f, 1, 1});
+          c.fill_rect(4, 2, 16, 12);
+        }
+      };
+      const Image expected = direct(48, 32, [&](Canvas& c) { scene(c, false); });
+      const Image drawn = direct(48, 32, [&](Canvas& c) { scene(c, true); });
+      EXPECT_LE(max_difference(expected, drawn), 1);
+      // Recorded and replayed, planned or not: the same.
+      const Scene recorded = record(48, 32, [&](Canvas& c) { scene(c, true); });
+      EXPECT_EQ(max_difference(drawn, replayed(recorded, nullptr)), 0);
+      const ScenePlan plan = plan_scene(recorded);
+      EXPECT_EQ(max_difference(drawn, replayed(recorded, &plan)), 0);
+    }
+  }
+}
+
+TEST(SceneMesh, ThePlannerDrawsOpaqueDepthMeshesFrontToBackAndKeepsGroupsOverMeshes) {
+  const Mesh soup = overlapping_soup(3, 40, 64);
+  Mesh translucent = soup;
+  for (MeshVertex& v : translucent.vertices) v.color.a = 0.6f;
+  const Scene scene = record(64, 64, [&](Canvas& c) {
+    MeshOptions options;
+    options.shading = Shading::Phong;
+    options.lighting.enabled = true;
+    c.draw_mesh(soup, options);          // #0: front to back
+    c.draw_mesh(translucent, options);   // #1: blending order matters
+    options.antialias = true;
+    c.draw_mesh(soup, options);          // #2: the antialiased accumulation keeps its order
+    options.antialias = false;
+    c.begin_layer(0.5f);                 // #3: a group opacity over a mesh's overlapping triangles
+    c.draw_mesh(soup, options);          // #4: inside a kept layer of opacity 0.5
+    c.end_layer();                       // #5
+    c.translate(500, 0);
+    c.draw_mesh(soup, options);          // #6: outside
+    c.draw_mesh(Mesh{}, options);        // #7: nothing
+  });
+  const ScenePlan plan = plan_scene(scene);
+  ASSERT_EQ(plan.decisions.size(), 8u);
+  EXPECT_TRUE(plan.decisions[0].front_to_back);
+  EXPECT_FALSE(plan.decisions[1].front_to_back);
+  EXPECT_FALSE(plan.decisions[2].front_to_back);
+  EXPECT_EQ(plan.decisions[3].action, Action::Draw);
+  EXPECT_EQ(plan.decisions[3].reason, PlanReason::LayerNeedsOverlap);
+  EXPECT_TRUE(plan.decisions[4].front_to_back);
+  EXPECT_EQ(plan.decisions[6].reason, PlanReason::OutsideCanvas);
+  EXPECT_EQ(plan.decisions[7].reason, PlanReason::ZeroArea);
+  EXPECT_EQ(plan.front_to_back, 2);
+  EXPECT_EQ(max_difference(replayed(scene, nullptr), replayed(scene, &plan)), 0);
+  const std::string text = explain_plan(scene, plan);
+  EXPECT_NE(text.find("nearest triangles first"), std::string::npos) << text;
+  EXPECT_NE(text.find("2 meshes front to back"), std::string::npos) << text;
+}
+
+TEST(SceneFrames, RedrawingOnlyTheChangedTilesGivesTheFullRedraw) {
+  // A sequence of frames into one image, each cleared only where it or the frame before touches: every frame is
+  // what a full clear and redraw gives, and the pixels that changed between frames lie inside the regions returned.
+  const Color background{0.9f, 0.9f, 0.8f, 1};
+  Image frames(200, 150);
+  ScenePlan previous;
+  int partial_frames = 0;
+  for (unsigned seed = 1; seed <= 40; ++seed) {
+    SCOPED_TRACE("frame " + std::to_string(seed));
+    const Scene scene = record(200, 150, [seed](Canvas& c) {
+      // A small scene somewhere in the big canvas (most tiles stay untouched), sometimes with a post-filter.
+      c.translate(static_cast<double>(seed * 37 % 140), static_cast<double>(seed * 53 % 90));
+      random_scene(c, seed);
+    });
+    const ScenePlan plan = plan_scene(scene);
+    const Image before = frames;
+    const std::vector<PixelBox> regions = draw_frame(frames, background, scene, plan, seed == 1 ? nullptr : &previous);
+    Image full(200, 150);
+    full.clear(background);
+    {
+      Canvas canvas(full);
+      canvas.draw_scene(scene, &plan);
+    }
+    ASSERT_EQ(max_difference(frames, full), 0);
+    std::int64_t area = 0;
+    for (const PixelBox& r : regions) {
+      EXPECT_TRUE(r.x0 >= 0 && r.y0 >= 0 && r.x1 <= 200 && r.y1 <= 150 && !r.empty());
+      area += r.area();
+    }
+    for (int y = 0; y < 150; ++y) {
+      for (int x = 0; x < 200; ++x) {
+        if (std::equal(before.pixel(x, y), before.pixel(x, y) + 4, frames.pixel(x, y))) continue;
+        const bool inside = std::any_of(regions.begin(), regions.end(), [&](const PixelBox& r) {
+          return x >= r.x0 && x < r.x1 && y >= r.y0 && y < r.y1;
+        });
+        ASSERT_TRUE(inside || seed == 1) << "pixel " << x << "," << y << " changed outside the regions";
+      }
+    }
+    // The regions are disjoint tiles: their area is that of the tiles either frame touches.
+    std::int64_t tiles_area = 0;
+    for (int ty = 0; ty < plan.tiles_y; ++ty) {
+      for (int tx = 0; tx < plan.tiles_x; ++tx) {
+        const std::size_t i = static_cast<std::size_t>(ty) * plan.tiles_x + tx;
+        if (seed > 1 && !plan.touched_tiles[i] && !previous.touched_tiles[i]) continue;
+        tiles_area += std::int64_t{std::min(64, 200 - 64 * tx)} * std::min(64, 150 - 64 * ty);
+      }
+    }
+    EXPECT_EQ(area, tiles_area);
+    if (area < 200 * 150) ++partial_frames;
+    previous = plan;
+  }
+  // Scenes whose operators change only what they draw leave most tiles alone.
+  EXPECT_GT(partial_frames, 10);
+}
+
+TEST(SceneFrames, ChangedRegionsMergeTouchedTilesAndRejectOtherSizes) {
+  ScenePlan plan;
+  plan.width = 150, plan.height = 100, plan.tile_size = 64, plan.tiles_x = 3, plan.tiles_y = 2;
+  // touched:  X X .      regions: [0,128)x[0,64) and [0,150)x[64,100)
+  //           X X X      (cut to the canvas along the right and bottom edges)
+  plan.touched_tiles = {1, 1, 0, 1, 1, 1};
+  const std::vector<PixelBox> regions = changed_regions(plan);
+  ASSERT_EQ(regions.size(), 2u);  // the runs [0,128) and [0,150) differ, so they do not merge
+  EXPECT_EQ(regions[0].x0, 0);
+  EXPECT_EQ(regions[0].x1, 128);
+  EXPECT_EQ(regions[0].y1, 64);
+  EXPECT_EQ(regions[1].x1, 150);
+  EXPECT_EQ(regions[1].y0, 64);
+  EXPECT_EQ(regions[1].y1, 100);
+  ScenePlan other = plan;
+  other.touched_tiles = {0, 0, 1, 0, 0, 0};
+  const std::vector<PixelBox> both = changed_regions(plan, &other);
+  ASSERT_EQ(both.size(), 1u);  // every tile of one frame or the other: the whole canvas
+  EXPECT_EQ(both[0].x1, 150);
+  EXPECT_EQ(both[0].y1, 100);
+  ScenePlan smaller = plan;
+  smaller.width = 100;
+  EXPECT_THROW(changed_regions(plan, &smaller), Error);
+  Image image(150, 99);
+  Scene scene;
+  scene.width = 150, scene.height = 100;
+  EXPECT_THROW(draw_frame(image, Color::transparent(), scene, plan, nullptr), Error);
 }

@@ -19,6 +19,7 @@
 #include "vraster/composite.hpp"
 #include "vraster/geometry.hpp"
 #include "vraster/image.hpp"
+#include "vraster/mesh.hpp"
 #include "vraster/paint.hpp"
 #include "vraster/path.hpp"
 #include "vraster/raster.hpp"
@@ -152,6 +153,12 @@ class Canvas {
   /// Paints the current fill paint through an 8-bit coverage mask whose pixel (0, 0) lands on device pixel
   /// (x, y), untransformed (cached glyphs).
   void fill_mask(const std::uint8_t* mask, int width, int height, std::ptrdiff_t stride, int x, int y);
+
+  /// Draws a triangle mesh (vraster/mesh.hpp): vertex positions in user space, mapped by the transform (depth,
+  /// normals and colours as given), through the clip and with the operator; the global alpha multiplies
+  /// options.opacity. A z-buffer is the call's own (what earlier calls drew does not hide it). Meshes cast no
+  /// shadow. Triangles with non-finite numbers are skipped.
+  void draw_mesh(const Mesh& mesh, const MeshOptions& options = {});
 
   // ---- layers ----
   /// Starts a layer: drawing goes to a transparent buffer covering only the area it can touch (the clip's

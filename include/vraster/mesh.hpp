@@ -101,6 +101,11 @@ struct MeshOptions {
   double depth_slope_offset = 0;
   bool cull_back_faces = false;  ///< skip triangles that run clockwise on screen
   bool write_depth = true;       ///< ZBuffer: whether passing fragments store their depth
+  /// ZBuffer, aliased, write_depth, and an opaque mesh (every vertex alpha 1, opacity 1): triangles are drawn nearest
+  /// first, so that hidden fragments fail the depth test before they are shaded, and depth ties go to the triangle
+  /// given first, so the picture is exactly the one of the given order. Ignored (the given order is drawn) when
+  /// one of those conditions does not hold. The scene planner sets it (vraster/scene.hpp).
+  bool front_to_back = false;
 };
 
 /// A float depth per pixel, cleared to +infinity (far).
@@ -127,7 +132,13 @@ struct MeshStats {
   std::int64_t triangles_skipped = 0;  ///< non-finite, degenerate (zero area after snapping), culled or off-canvas
   std::int64_t fragments = 0;          ///< pixel centres covered (aliased) or pixels touched (antialiased)
   std::int64_t depth_rejected = 0;     ///< fragments that failed the depth test
+  std::int64_t fragments_shaded = 0;   ///< fragments whose colour was computed
+  bool drew_front_to_back = false;     ///< MeshOptions::front_to_back applied
 };
+
+/// Whether every fragment of `mesh` drawn with `options` is opaque (every vertex alpha >= 1, opacity >= 1), so that
+/// the last fragment at a pixel decides it whatever was under it.
+bool mesh_is_opaque(const Mesh& mesh, const MeshOptions& options);
 
 /// Vertex positions are snapped to this grid (1/256 px) before the edge functions are evaluated, exactly, in 64-bit
 /// integers; triangles reaching beyond +-kMeshGuard pixels are clipped to that band first, so nothing overflows.

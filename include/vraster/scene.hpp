@@ -5,7 +5,7 @@
 //      under, instead of drawing it
 //   2. plan_scene(): one pass over the scene decides per call what it needs: culled (outside the canvas or its
 //      clip, invisible, empty, or hidden under later opaque content), its coverage method, whether a layer is
-//      needed at all, and which tiles of the canvas the scene touches
+//      needed at all, whether a mesh can be drawn front to back, and which tiles of the canvas the scene touches
 //   3. Canvas::draw_scene(scene, &plan) replays it onto any canvas, doing only what the plan kept;
 //      draw_scene(scene) without a plan replays every call as recorded (the naive render)
 //   4. explain_plan() prints every decision and what it saved (`vraster explain`)
@@ -62,6 +62,7 @@ struct SceneCommand {
     EndLayer,    ///< end_layer()
     Fxaa,        ///< apply_fxaa(): a post-filter over the whole target
     FloodFill,   ///< flood_fill() from (x, y) with state.fill_paint's colour and `seed`
+    Mesh,        ///< draw_mesh(): `mesh` (positions mapped by to_device) drawn with `mesh_options`
   };
   Kind kind = Kind::Fill;
   Path path;
@@ -74,6 +75,8 @@ struct SceneCommand {
   int x = 0, y = 0;
   LayerOptions layer;
   SeedFillOptions seed;
+  std::shared_ptr<const Mesh> mesh;
+  MeshOptions mesh_options;
 };
 
 /// A list of draw calls on a canvas of a given size, replayable onto any canvas (Canvas::draw_scene).
@@ -133,11 +136,13 @@ struct PlanDecision {
   PixelBox bounds;           ///< device pixels the call can change (clipped to the canvas and its clip's box)
   float alpha_scale = 1;     ///< a folded group opacity, multiplied into the call's global alpha
   bool aliased = false;      ///< drawn without antialiasing work (the result is the same)
+  bool front_to_back = false;  ///< a mesh drawn nearest triangle first (MeshOptions::front_to_back)
 };
 
 /// The plan of a scene: one decision per command and what it saves.
 struct ScenePlan {
   std::vector<PlanDecision> decisions;
+  int width = 0, height = 0;  ///< the scene's
   int tile_size = 64;
   int tiles_x = 0, tiles_y = 0;
   std::vector<std::uint8_t> touched_tiles;  ///< tiles_x * tiles_y, 1 where a kept call can change a pixel
@@ -146,8 +151,24 @@ struct ScenePlan {
   std::int64_t layer_pixels_saved = 0;      ///< layer pixels not allocated
   std::int64_t pixels_not_composited = 0;   ///< bounds area of the culled calls
   int aliased = 0;                          ///< calls drawn without antialiasing work
+  int front_to_back = 0;                    ///< meshes drawn nearest triangle first
   int touched_tile_count() const;
 };
+
+/// The tiles `plan` touches, and those `previous` touched when it is given (a plan of a scene of the same size), as
+/// rectangles of device pixels: runs of touched tiles in each tile row, merged with the run of the same extent
+/// below. These are the only pixels a frame of the scene can change, so a program that redraws frames into one
+/// image clears, redraws, encodes or uploads only them (draw_frame).
+std::vector<PixelBox> changed_regions(const ScenePlan& plan, const ScenePlan* previous = nullptr);
+
+/// Draws `scene` with `plan` as the next frame of `target` (the scene's size). `previous` is the plan of the frame
+/// `target` holds, drawn by draw_frame with the same background; null when that is unknown (the first frame):
+/// then the whole image is cleared. Otherwise only changed_regions(plan, previous) are cleared to `background`
+/// and drawn into, which gives the same pixels as clearing everything; they are returned (for a first frame,
+/// the whole image). Throws vraster::Error when the sizes do not match.
+template <class T>
+std::vector<PixelBox> draw_frame(BasicImage<T>& target, Color background, const Scene& scene, const ScenePlan& plan,
+                                 const ScenePlan* previous);
 
 /// 2.5D ordering for objects of constant depth (window systems, cartoon cels, VLSI layers): the scene with its
 /// calls in increasing z (Canvas::set_z), calls of equal z in the order they were recorded. A layer moves as one

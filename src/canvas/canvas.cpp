@@ -349,6 +349,10 @@ void Canvas::fill(const Path& path, FillRule rule) {
   impl_->fill_path(path, impl_->state.transform, rule, impl_->state.fill_paint);
 }
 
+void Canvas::draw_mesh(const Mesh& mesh, const MeshOptions& options) {
+  impl_->draw_mesh(mesh, impl_->state.transform, options);
+}
+
 void Canvas::stroke() {
   const Affine& m = impl_->state.transform;
   if (!m.invertible()) return;  // a singular transform squashes the stroke to nothing

@@ -111,6 +111,7 @@ struct Canvas::Impl {
 
   // Reused by every draw call (nothing allocates per path once they have grown).
   Renderer renderer;  // flattening buffer + the one rasterizer
+  MeshRenderer mesh_renderer;
   Compositor<std::uint8_t> compositor8;
   Compositor<std::uint16_t> compositor16;
   Polylines lines;                      // clip and hit-test flattening
@@ -151,6 +152,9 @@ struct Canvas::Impl {
   void begin_layer(const LayerOptions& options);
   void end_layer(bool composite = true);  ///< false: the layer is dropped without a trace
   void draw_image(const Image& image, Rect src, Rect dst);
+  void draw_mesh(const Mesh& mesh, const Affine& to_device, MeshOptions options);
+  template <class T>
+  void draw_mesh_onto_target(const Mesh& device_mesh, const MeshOptions& options);
 
   // ---- recording (record.cpp) ----
   /// Appends a command of `kind` with the current state (and clips) to the recording.

@@ -584,6 +584,50 @@ void Canvas::Impl::end_layer(bool composite) {
   }
 }
 
+// ---- meshes ----
+
+void Canvas::Impl::draw_mesh(const Mesh& mesh, const Affine& to_device, MeshOptions options) {
+  if (recording) {
+    SceneCommand& c = record(SceneCommand::Kind::Mesh);
+    c.mesh = std::make_shared<const Mesh>(mesh);
+    c.to_device = to_device;
+    c.mesh_options = options;
+    return;
+  }
+  options.opacity *= state.global_alpha;
+  if (!(options.opacity > 0) && is_bounded(state.op)) return;
+  const Mesh* device_mesh = &mesh;
+  Mesh mapped;
+  if (!to_device.is_identity()) {
+    mapped = mesh;
+    for (MeshVertex& v : mapped.vertices) v.position = to_device.apply(v.position);
+    device_mesh = &mapped;
+  }
+  // The mesh renderer blends source-over onto a view: another operator or an antialiased clip applies to the
+  // whole mesh once, through a layer (as the mesh's fragments are one drawing).
+  const bool through_layer = state.op != CompositeOp::SourceOver || state.clip.mask != nullptr;
+  if (through_layer) {
+    LayerOptions layer;
+    layer.op = state.op;
+    begin_layer(layer);
+  }
+  if (is16()) {
+    draw_mesh_onto_target<std::uint16_t>(*device_mesh, options);
+  } else {
+    draw_mesh_onto_target<std::uint8_t>(*device_mesh, options);
+  }
+  if (through_layer) end_layer();
+}
+
+template <class T>
+void Canvas::Impl::draw_mesh_onto_target(const Mesh& device_mesh, const MeshOptions& options) {
+  const IntRect box = state.clip.box.intersect(target_box());
+  if (box.empty()) return;
+  const ImageView<T> target = target_view<T>();
+  const ImageView<T> view{target.pixel(box.x0, box.y0), box.x0, box.y0, box.width(), box.height(), target.stride};
+  mesh_renderer.draw(view, device_mesh, options);
+}
+
 // ---- images ----
 
 void Canvas::Impl::draw_image(const Image& image, Rect src, Rect dst) {

@@ -134,6 +134,15 @@ void Canvas::draw_scene(const Scene& scene, const ScenePlan* plan) {
       case SceneCommand::Kind::Fxaa:
         apply_fxaa();
         break;
+      case SceneCommand::Kind::Mesh: {
+        if (!c.mesh) break;
+        use_clip(c.clip.get());
+        use_state(c.state, d);
+        MeshOptions options = c.mesh_options;
+        if (d && d->front_to_back) options.front_to_back = true;
+        s.draw_mesh(*c.mesh, c.to_device, options);
+        break;
+      }
       case SceneCommand::Kind::FloodFill:
         flood_fill(c.x, c.y, c.state.fill_paint.color(), c.seed);
         break;

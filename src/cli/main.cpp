@@ -195,13 +195,15 @@ RenderArgs parse_render_args(int argc, char** argv) {
   return a;
 }
 
-/// Renders frames (one, or --bench N timed after a warm-up) with `draw`, then writes the PNG.
+/// Renders frames (one, or --bench N timed after a warm-up) with `draw`, then writes the PNG. draw(image, first)
+/// clears what it needs and draws a frame; after the first, the image holds the frame before.
 template <class T, class Draw>
 void render_frames(int width, int height, const RenderArgs& a, Draw&& draw) {
   BasicImage<T> image(width, height);
+  bool first = true;
   auto frame = [&] {
-    image.clear(a.background);
-    draw(image);
+    draw(image, first);
+    first = false;
     post_filter(a.aa, image);  // fxaa: the aliased render, then the filter
   };
   if (a.bench_frames > 0) {
@@ -228,8 +230,10 @@ void render_frames(int width, int height, const RenderArgs& a, Draw&& draw) {
 template <class T>
 void render_document(const svg::Document& doc, const RenderArgs& a) {
   Renderer renderer;
-  render_frames<T>(doc.width, doc.height, a,
-                   [&](BasicImage<T>& image) { svg::render(doc, image, a.settings, renderer); });
+  render_frames<T>(doc.width, doc.height, a, [&](BasicImage<T>& image, bool) {
+    image.clear(a.background);
+    svg::render(doc, image, a.settings, renderer);
+  });
   warn_about_exact_fallbacks(renderer);
 }
 
@@ -276,7 +280,15 @@ void render_tree(const svg::Tree& tree, const RenderArgs& a) {
   std::uint64_t fallbacks = recorded.exact_fallbacks;
   const bool over_budget = recorded.over_budget;
   const std::optional<ScenePlan> plan = a.plan ? std::optional<ScenePlan>(plan_scene(scene)) : std::nullopt;
-  render_frames<T>(w, h, a, [&](BasicImage<T>& image) {
+  // Frames after the first are redrawn over the one before: with a plan, only the tiles the scene touches are
+  // cleared and drawn (draw_frame). Not under FXAA: the filter changes pixels next to the tiles too.
+  const bool redraw_tiles = plan && !a.aa.fxaa;
+  render_frames<T>(w, h, a, [&](BasicImage<T>& image, bool first) {
+    if (redraw_tiles && !first) {
+      draw_frame(image, a.background, scene, *plan, &*plan);
+      return;
+    }
+    image.clear(a.background);
     Canvas canvas(image);
     canvas.draw_scene(scene, plan ? &*plan : nullptr);
     fallbacks += canvas.exact_fallbacks();

@@ -63,6 +63,9 @@ bool write_rows(FILE* file, const BasicImage<T>& image, png_byte* row, ErrorStat
   png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height),
                8 * static_cast<int>(sizeof(T)), PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  // One filter (Up) instead of libpng's per-row trial of all five: encoding takes about half the time (it was
+  // most of the time of large renders) for files 0-6% larger on our pictures.
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_UP);
   png_write_info(png, info);
   for (int y = 0; y < image.height; ++y) {
     straight_row(image, y, row);

@@ -1,6 +1,7 @@
 // The mesh renderer (include/vraster/mesh.hpp has the data flow).
 //
-//   1. order the triangles (as given, or farthest first for the painter's algorithm)
+//   1. order the triangles (as given, farthest first for the painter's algorithm, or nearest first when the planner
+//      asks for front to back: hidden fragments then fail the depth test before they are shaded)
 //   2. prepare each triangle: reject the invalid, cull, barycentric planes in double, vertex colours (lit once per
 //      triangle for flat shading, per vertex for Gouraud, kept unlit for Phong)
 //   3. aliased: the covered pixel centres (triangle_setup.hpp) span by span -> depth test -> shade -> blend_row
@@ -34,6 +35,8 @@ void rasterize_triangle_bbox(Point a, Point b, Point c, int width, int height,
 }
 
 namespace {
+
+constexpr std::uint32_t kNoOwner = 0xFFFFFFFFu;
 
 // One triangle ready to shade: positions in view pixels, barycentric planes, depths, colours.
 struct Prepared {
@@ -190,8 +193,14 @@ void store_premultiplied(Color c, float coverage, T* out) {
 
 }  // namespace
 
+bool mesh_is_opaque(const Mesh& mesh, const MeshOptions& options) {
+  if (!(options.opacity >= 1)) return false;
+  return std::all_of(mesh.vertices.begin(), mesh.vertices.end(), [](const MeshVertex& v) { return v.color.a >= 1; });
+}
+
 struct MeshRenderer::Buffers {
   std::vector<std::uint32_t> order;
+  std::vector<std::uint32_t> owner;  // front to back: the triangle whose depth each pixel holds (kNoOwner: none)
   std::vector<double> keys;
   DepthBuffer own_depth;
   std::vector<float> coverage;
@@ -251,6 +260,7 @@ class AccumulateSink final : public CoverageSink {
         return;
       }
     }
+    ++stats_.fragments_shaded;
     // Colours from weights clamped to the triangle, so centres outside it do not extrapolate.
     double sum = 0;
     for (double& l : lambda) sum += (l = std::max(0.0, l));
@@ -300,7 +310,23 @@ void MeshRenderer::draw(ImageView<T> target, const Mesh& mesh, const MeshOptions
   // 1. Order.
   b.order.resize(mesh.triangles.size());
   std::iota(b.order.begin(), b.order.end(), 0u);
-  if (options.depth == DepthMode::Painter) {
+  const bool front_to_back = options.front_to_back && use_depth && options.write_depth && !options.antialias &&
+                             mesh.triangles.size() < kNoOwner && mesh_is_opaque(mesh, options);
+  stats_.drew_front_to_back = front_to_back;
+  if (front_to_back) {
+    // Nearest vertex first. Only the amount of shading depends on this order: ties are settled by index below.
+    b.keys.resize(mesh.triangles.size());
+    for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (std::uint32_t k : mesh.triangles[i]) {
+        if (k < mesh.vertices.size()) nearest = std::min(nearest, mesh.vertices[k].depth);
+      }
+      b.keys[i] = std::isfinite(nearest) ? nearest : std::numeric_limits<double>::infinity();
+    }
+    std::stable_sort(b.order.begin(), b.order.end(),
+                     [&](std::uint32_t i, std::uint32_t j) { return b.keys[i] < b.keys[j]; });
+    b.owner.assign(static_cast<std::size_t>(width) * height, kNoOwner);
+  } else if (options.depth == DepthMode::Painter) {
     b.keys.resize(mesh.triangles.size());
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
       double sum = 0;
@@ -329,6 +355,7 @@ void MeshRenderer::draw(ImageView<T> target, const Mesh& mesh, const MeshOptions
       cover_triangle(t.p, width, height, false, [&](int y, int x0, int x1) {
         any = true;
         float* zrow = use_depth ? depth->row(y) : nullptr;
+        std::uint32_t* owners = front_to_back ? b.owner.data() + static_cast<std::size_t>(y) * width : nullptr;
         T* s = src.data();
         bool all_pass = true;
         // Depth, and colours when they are affine on screen, step along the span from its first centre.
@@ -342,14 +369,19 @@ void MeshRenderer::draw(ImageView<T> target, const Mesh& mesh, const MeshOptions
           cov = 1;
           if (zrow != nullptr) {
             const float z = static_cast<float>(z_start + i * t.dzdx);
-            if (!(z < zrow[x])) {
+            // Drawn in the given order, the first of equally near triangles would keep the pixel (strict test):
+            // front to back, a tie goes to the smaller index of this mesh (a depth from before it keeps its pixel).
+            const bool wins_tie = owners != nullptr && z == zrow[x] && owners[x] != kNoOwner && index < owners[x];
+            if (!(z < zrow[x]) && !wins_tie) {
               cov = 0, all_pass = false;
               ++stats_.depth_rejected;
               s[0] = s[1] = s[2] = s[3] = 0;
               continue;
             }
             if (options.write_depth) zrow[x] = z;
+            if (owners != nullptr) owners[x] = index;
           }
+          ++stats_.fragments_shaded;
           if (t.linear_color) {
             const float k = static_cast<float>(i);
             store_premultiplied(Color{c_start.r + k * t.dcdx[0], c_start.g + k * t.dcdx[1],

@@ -10,6 +10,8 @@
 //   layers       opacity 1, source-over, no mask, clipped only by pixel-aligned rectangles, and only source-over
 //                drawing inside: dropped (source-over is associative); the same with opacity < 1 whose children
 //                touch disjoint pixels and cast no shadow: dropped, the opacity folded into each child's alpha
+//   meshes       an opaque mesh with the z-buffer: drawn nearest triangle first, so hidden fragments are rejected
+//                before they are shaded (ties go to the triangle given first: the same picture)
 //   tiles        the 64 x 64 tiles that some kept command can change
 #include <algorithm>
 #include <cmath>
@@ -231,6 +233,20 @@ class Planner {
       case Kind::PutPixels:
         if (c.image) box = {c.x, c.y, c.x + c.image->width, c.y + c.image->height};
         break;
+      case Kind::Mesh: {
+        if (!c.mesh) break;
+        bool any = false;
+        Rect r;
+        for (const MeshVertex& v : c.mesh->vertices) {
+          const Point p = c.to_device.apply(v.position);
+          if (!is_finite(p)) continue;  // the triangles using it are skipped
+          if (!any) r = Rect::from_point(p);
+          r.include(p);
+          any = true;
+        }
+        if (any) box = touching(r, 1, everywhere);
+        return box;  // meshes cast no shadow
+      }
       case Kind::Fxaa:
       case Kind::FloodFill:
         return canvas_;
@@ -341,6 +357,10 @@ class Planner {
       if (d.bounds.empty()) cull(i, Reason::OutsideCanvas);
       return;
     }
+    if (c.kind == Kind::Mesh && (!c.mesh || c.mesh->triangles.empty())) {
+      cull(i, Reason::ZeroArea);
+      return;
+    }
     if (d.bounds.empty()) {
       cull(i, intersect(unclipped_[i], canvas_).empty() ? Reason::OutsideCanvas : Reason::OutsideClip);
       return;
@@ -348,15 +368,18 @@ class Planner {
     const SceneState& s = c.state;
     if (!is_bounded(s.op)) return;  // changes the clip region whatever it draws
     const Paint& paint = c.kind == Kind::Stroke ? s.stroke_paint : s.fill_paint;
+    const bool paints_itself = c.kind == Kind::DrawImage || c.kind == Kind::Mesh;  // no fill or stroke paint
     if (!(s.global_alpha > 0)) {
       cull(i, Reason::GlobalAlphaZero);
-    } else if (c.kind != Kind::DrawImage && paint.is_invisible()) {
+    } else if (!paints_itself && paint.is_invisible()) {
       cull(i, Reason::TransparentPaint);
     } else if (c.kind == Kind::Fill && !casts_shadow(s)) {
       const Rect& r = device_[i];
       if (r.width() == 0 || r.height() == 0) cull(i, Reason::ZeroArea);
     } else if (c.kind == Kind::Stroke && !(s.line.width > 0)) {
       cull(i, Reason::ZeroWidth);
+    } else if (c.kind == Kind::Mesh && !(c.mesh_options.opacity > 0)) {
+      cull(i, Reason::GlobalAlphaZero);
     }
   }
 
@@ -443,7 +466,7 @@ class Planner {
     if (d.action != Action::Draw) return;
     const SceneCommand& c = scene_.commands[b];
     const int e = end_of_[b];
-    bool any = false, plain = true, shadows = false, nested = false;
+    bool any = false, plain = true, shadows = false, nested = false, self_overlap = false;
     // Its children: the drawing calls inside it that no kept inner layer encloses (a dropped inner layer's
     // children draw straight into this one).
     std::vector<std::size_t> children;
@@ -465,6 +488,8 @@ class Planner {
       }
       any = true;
       if (inner.state.op != CompositeOp::SourceOver) plain = false;
+      // A mesh's triangles may overlap each other: a group opacity does not fold into its fragments.
+      self_overlap = self_overlap || inner.kind == Kind::Mesh;
       shadows = shadows || casts_shadow(inner.state);
       if (std::find(inner_kept.begin(), inner_kept.end(), true) == inner_kept.end()) {
         children.push_back(static_cast<std::size_t>(k));
@@ -491,7 +516,7 @@ class Planner {
       d.reason = Reason::LayerNeedsNested;
     } else if (shadows) {
       d.reason = Reason::LayerNeedsShadows;
-    } else if (!disjoint(children)) {
+    } else if (self_overlap || !disjoint(children)) {
       d.reason = Reason::LayerNeedsOverlap;
     } else {
       drop(b, Reason::LayerFolded, c.layer.opacity);
@@ -537,6 +562,15 @@ class Planner {
   void mark_aliased(std::size_t i) {
     const SceneCommand& c = scene_.commands[i];
     PlanDecision& d = plan_.decisions[i];
+    if (d.action == Action::Draw && c.kind == Kind::Mesh) {
+      // Opaque fragments and a z-buffer: the nearest fragment decides each pixel whatever the order, so
+      // drawing nearest first only saves shading (global alpha folds into the opacity, so it must be 1 too;
+      // a group opacity is never folded into a mesh).
+      const MeshOptions& o = c.mesh_options;
+      d.front_to_back = o.depth == DepthMode::ZBuffer && !o.antialias && o.write_depth && c.state.global_alpha >= 1 &&
+                        c.mesh && c.mesh->triangles.size() > 1 && mesh_is_opaque(*c.mesh, o);
+      return;
+    }
     if (d.action != Action::Draw || c.kind != Kind::Fill || c.state.aa == AntiAlias::None || casts_shadow(c.state)) {
       return;
     }
@@ -548,6 +582,8 @@ class Planner {
 
   void summarise() {
     const int ts = plan_.tile_size;
+    plan_.width = canvas_.x1;
+    plan_.height = canvas_.y1;
     plan_.tiles_x = (canvas_.x1 + ts - 1) / ts;
     plan_.tiles_y = (canvas_.y1 + ts - 1) / ts;
     plan_.touched_tiles.assign(static_cast<std::size_t>(plan_.tiles_x) * plan_.tiles_y, 0);
@@ -560,6 +596,7 @@ class Planner {
         continue;
       }
       if (d.aliased) plan_.aliased++;
+      if (d.front_to_back) plan_.front_to_back++;
       if (kind == Kind::BeginLayer) continue;
       if (kind == Kind::EndLayer && d.action == Action::Draw) d.reason = Reason::LayerComposited;
       const PixelBox box = intersect(d.bounds, canvas_);
@@ -599,6 +636,12 @@ std::string drawn_sentence(const SceneCommand& c, const PlanDecision& d) {
     case Kind::PutPixels: return "drawn: pixels stored as given";
     case Kind::Fxaa: return "drawn: post-filter over the whole target";
     case Kind::FloodFill: return "drawn: flood fill (reads the pixels drawn before)";
+    case Kind::Mesh:
+      if (d.front_to_back) {
+        return "drawn: opaque mesh with a z-buffer, nearest triangles first (" + std::to_string(c.mesh->triangles.size()) +
+               " triangles; hidden fragments rejected before shading)";
+      }
+      return "drawn: mesh of " + std::to_string(c.mesh ? c.mesh->triangles.size() : 0) + " triangles, in the given order";
     default: break;
   }
   std::string why = "drawn";
@@ -630,6 +673,7 @@ const char* kind_name(Kind k) {
     case Kind::EndLayer: return "end";
     case Kind::Fxaa: return "fxaa";
     case Kind::FloodFill: return "flood";
+    case Kind::Mesh: return "mesh";
   }
   return "?";
 }
@@ -733,8 +777,9 @@ std::string explain_plan(const Scene& scene, const ScenePlan& plan) {
   out << "summary: " << scene.commands.size() << " commands, " << plan.culled << " culled ("
       << plan.pixels_not_composited << " pixels not composited); layers: " << plan.layers_dropped << " dropped, "
       << plan.layers_folded << " folded (" << plan.layer_pixels_saved << " layer pixels not allocated); "
-      << plan.aliased << " without antialiasing work; tiles touched: " << plan.touched_tile_count() << " of "
-      << tiles << " (" << plan.tile_size << " px)\n";
+      << plan.aliased << " without antialiasing work; " << plan.front_to_back
+      << " meshes front to back; tiles touched: " << plan.touched_tile_count() << " of " << tiles << " ("
+      << plan.tile_size << " px)\n";
   return out.str();
 }
 
@@ -747,14 +792,15 @@ std::string explain_plan_json(const Scene& scene, const ScenePlan& plan) {
     out << "{\"index\":" << i << ",\"kind\":\"" << kind_name(scene.commands[i].kind) << "\",\"action\":\""
         << action_name(d.action) << "\",\"bounds\":[" << d.bounds.x0 << ',' << d.bounds.y0 << ',' << d.bounds.x1
         << ',' << d.bounds.y1 << "],\"alpha_scale\":" << d.alpha_scale << ",\"aliased\":"
-        << (d.aliased ? "true" : "false") << ",\"ref\":" << d.ref << ",\"why\":"
+        << (d.aliased ? "true" : "false") << ",\"front_to_back\":" << (d.front_to_back ? "true" : "false")
+        << ",\"ref\":" << d.ref << ",\"why\":"
         << json_string(describe_decision(scene, plan, i))
         << '}';
   }
   out << "],\"summary\":{\"commands\":" << scene.commands.size() << ",\"culled\":" << plan.culled
       << ",\"pixels_not_composited\":" << plan.pixels_not_composited << ",\"layers_dropped\":" << plan.layers_dropped
       << ",\"layers_folded\":" << plan.layers_folded << ",\"layer_pixels_saved\":" << plan.layer_pixels_saved
-      << ",\"aliased\":" << plan.aliased << ",\"tiles_touched\":" << plan.touched_tile_count()
+      << ",\"aliased\":" << plan.aliased << ",\"front_to_back\":" << plan.front_to_back << ",\"tiles_touched\":" << plan.touched_tile_count()
       << ",\"tiles\":" << plan.tiles_x * plan.tiles_y << ",\"tile_size\":" << plan.tile_size << "}}\n";
   return out.str();
 }

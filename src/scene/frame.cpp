@@ -1,0 +1,85 @@
+// Frames drawn one over another: only the tiles a frame or the one before it touches are cleared and redrawn.
+//
+// Why it is exact: after clearing to the background and drawing the scene, a pixel outside every tile the plan
+// touches still holds the background (no kept call can change it). So if the image held the previous frame, drawn
+// the same way, the pixels outside both frames' tiles hold the background already, and clearing just the union
+// of the two sets of tiles before drawing gives what clearing everything would.
+#include <algorithm>
+#include <string>
+
+#include "vraster/error.hpp"
+#include "vraster/scene.hpp"
+
+namespace vraster {
+
+std::vector<PixelBox> changed_regions(const ScenePlan& plan, const ScenePlan* previous) {
+  const bool same_grid = previous == nullptr ||
+                         (previous->width == plan.width && previous->height == plan.height &&
+                          previous->tile_size == plan.tile_size && previous->touched_tiles.size() == plan.touched_tiles.size());
+  if (!same_grid) throw Error("changed_regions: the two plans are for canvases of different sizes");
+  const int ts = plan.tile_size;
+  auto touched = [&](int tx, int ty) {
+    const std::size_t i = static_cast<std::size_t>(ty) * plan.tiles_x + tx;
+    return plan.touched_tiles[i] != 0 || (previous != nullptr && previous->touched_tiles[i] != 0);
+  };
+  std::vector<PixelBox> out;
+  std::vector<std::size_t> open;  // boxes ending at the previous tile row, which may grow down
+  for (int ty = 0; ty < plan.tiles_y; ++ty) {
+    std::vector<std::size_t> next;
+    for (int tx = 0; tx < plan.tiles_x;) {
+      if (!touched(tx, ty)) {
+        ++tx;
+        continue;
+      }
+      const int start = tx;
+      while (tx < plan.tiles_x && touched(tx, ty)) ++tx;
+      const PixelBox run{start * ts, ty * ts, std::min(tx * ts, plan.width), std::min((ty + 1) * ts, plan.height)};
+      const auto same = std::find_if(open.begin(), open.end(), [&](std::size_t k) {
+        return out[k].x0 == run.x0 && out[k].x1 == run.x1;
+      });
+      if (same != open.end()) {
+        out[*same].y1 = run.y1;
+        next.push_back(*same);
+      } else {
+        out.push_back(run);
+        next.push_back(out.size() - 1);
+      }
+    }
+    open = std::move(next);
+  }
+  return out;
+}
+
+template <class T>
+std::vector<PixelBox> draw_frame(BasicImage<T>& target, Color background, const Scene& scene, const ScenePlan& plan,
+                                 const ScenePlan* previous) {
+  if (target.width != scene.width || target.height != scene.height || plan.width != scene.width ||
+      plan.height != scene.height) {
+    throw Error("draw_frame: the image is " + std::to_string(target.width) + "x" + std::to_string(target.height) +
+                ", the scene " + std::to_string(scene.width) + "x" + std::to_string(scene.height) + ", the plan " +
+                std::to_string(plan.width) + "x" + std::to_string(plan.height));
+  }
+  std::vector<PixelBox> regions;
+  if (previous == nullptr) {
+    target.clear(background);
+    regions.push_back(PixelBox{0, 0, target.width, target.height});
+  } else {
+    regions = changed_regions(plan, previous);
+    BasicImage<T> fill(1, 1);
+    fill.clear(background);
+    for (const PixelBox& r : regions) {
+      for (int y = r.y0; y < r.y1; ++y) {
+        T* px = target.pixel(r.x0, y);
+        for (int x = r.x0; x < r.x1; ++x, px += 4) std::copy(fill.data.begin(), fill.data.end(), px);
+      }
+    }
+  }
+  Canvas canvas(target);
+  canvas.draw_scene(scene, &plan);
+  return regions;
+}
+
+template std::vector<PixelBox> draw_frame(Image&, Color, const Scene&, const ScenePlan&, const ScenePlan*);
+template std::vector<PixelBox> draw_frame(Image16&, Color, const Scene&, const ScenePlan&, const ScenePlan*);
+
+}  // namespace vraster
