@@ -395,8 +395,20 @@ void MeshRenderer::draw(ImageView<T> target, const Mesh& mesh, const MeshOptions
           store_premultiplied(fragment_color(t, options, w), 1.f, s);
         }
         stats_.fragments += x1 - x0;
-        blend_row(CompositeOp::SourceOver, target.pixels + y * target.stride + static_cast<std::ptrdiff_t>(x0) * 4,
-                  src.data(), all_pass ? nullptr : b.coverage.data(), nullptr, x1 - x0);
+        if (all_pass) {
+          blend_row(CompositeOp::SourceOver, target.pixels + y * target.stride + static_cast<std::ptrdiff_t>(x0) * 4,
+                    src.data(), nullptr, nullptr, x1 - x0);
+          return;
+        }
+        // Only the run between the first and the last fragment that passed (hidden spans blend nothing).
+        int first = 0, last = x1 - x0 - 1;
+        while (first <= last && b.coverage[static_cast<std::size_t>(first)] == 0) ++first;
+        while (last >= first && b.coverage[static_cast<std::size_t>(last)] == 0) --last;
+        if (first > last) return;
+        blend_row(CompositeOp::SourceOver,
+                  target.pixels + y * target.stride + static_cast<std::ptrdiff_t>(x0 + first) * 4,
+                  src.data() + static_cast<std::size_t>(first) * 4, b.coverage.data() + first, nullptr,
+                  last - first + 1);
       });
       if (any) {
         ++stats_.triangles_drawn;
