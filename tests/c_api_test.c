@@ -511,6 +511,42 @@ static void test_flood_fill(void) {
   vr_image_destroy(img);
 }
 
+/* Triangles: two aliased triangles making a rectangle give fill_rect's pixels; with the z-buffer the nearer of two
+ * overlapping triangles shows whatever the order; bad input is refused or skipped. */
+static void test_triangles(void) {
+  vr_image* img = NULL;
+  vr_canvas* c = fresh(16, 12, &img);
+  vr_canvas_set_antialias(c, VR_AA_NONE);
+  const double quad[4 * 7] = {2, 2, 0, 1, 0, 0, 1, 10, 2, 0, 1, 0, 0, 1, 10, 8, 0, 1, 0, 0, 1, 2, 8, 0, 1, 0, 0, 1};
+  const unsigned two[6] = {0, 1, 2, 0, 2, 3};
+  CHECK(vr_canvas_draw_triangles(c, quad, 4, two, 2, 0, 0, 0) == 0);
+  int inside = 1, outside = 1;
+  for (int y = 0; y < 12; ++y) {
+    for (int x = 0; x < 16; ++x) {
+      const int in = x >= 2 && x < 10 && y >= 2 && y < 8;
+      if (in) inside = inside && pixel_is(img, x, y, 255, 0, 0, 255, 0);
+      else outside = outside && pixel_is(img, x, y, 0, 0, 0, 0, 0);
+    }
+  }
+  CHECK(inside && outside);
+  /* a far green triangle drawn after a near blue one over the same pixels: blue stays with the z-buffer */
+  const double near_far[6 * 7] = {0, 0, 0.2, 0, 0, 1, 1, 16, 0, 0.2, 0, 0, 1, 1, 0, 12, 0.2, 0, 0, 1, 1,
+                                  0, 0, 0.8, 0, 1, 0, 1, 16, 0, 0.8, 0, 1, 0, 1, 0, 12, 0.8, 0, 1, 0, 1};
+  const unsigned pair[6] = {0, 1, 2, 3, 4, 5};
+  CHECK(vr_canvas_draw_triangles(c, near_far, 6, pair, 2, 1, 1, 0) == 0);
+  CHECK(pixel_is(img, 1, 1, 0, 0, 255, 255, 0));
+  CHECK(vr_canvas_draw_triangles(c, near_far, 6, pair, 2, 1, 0, 0) == 0);
+  CHECK(pixel_is(img, 1, 1, 0, 255, 0, 255, 0));
+  /* errors and skipped triangles */
+  CHECK(vr_canvas_draw_triangles(c, NULL, 3, two, 1, 0, 0, 0) == -1 && error_mentions("null"));
+  const unsigned out_of_range[3] = {0, 1, 99};
+  CHECK(vr_canvas_draw_triangles(c, quad, 4, out_of_range, 1, 0, 0, 0) == 0);
+  CHECK(vr_canvas_draw_triangles(NULL, quad, 4, two, 2, 0, 0, 0) == -1);
+  CHECK(vr_canvas_draw_triangles(c, NULL, 0, NULL, 0, 0, 0, 0) == 0);
+  vr_canvas_destroy(c);
+  vr_image_destroy(img);
+}
+
 int main(int argc, char** argv) {
   const char* work = argc > 1 ? argv[1] : ".";
   test_images(work);
@@ -520,6 +556,7 @@ int main(int argc, char** argv) {
   test_composite_and_layers();
   test_paints_and_images();
   test_flood_fill();
+  test_triangles();
 #if VRASTER_WITH_TEXT
   test_text();
 #endif

@@ -268,6 +268,16 @@ VR_API long long vr_canvas_flood_fill(vr_canvas* c, int x, int y, double r, doub
 VR_API long long vr_canvas_flood_fill_to_boundary(vr_canvas* c, int x, int y, double r, double g, double b, double a,
                                                   double br, double bg, double bb, double ba, int connectivity,
                                                   double tolerance);
+/** Draws a triangle mesh. `vertices` holds `vertex_count` vertices of 7 doubles each: x, y (user space, mapped by
+ *  the transform), depth (smaller is nearer), r, g, b, a (straight colour, 0..1); `indices` holds `triangle_count`
+ *  triples of vertex indices. `gouraud` 1 interpolates the colours, 0 gives each triangle its mean colour;
+ *  `zbuffer` 1 resolves hidden surfaces per pixel (a buffer of the call's own), 0 draws in the order given;
+ *  `antialias` 1 gives analytic coverage without seams between triangles. Drawn through the clip with the operator;
+ *  the global alpha multiplies every colour's alpha. Triangles with a non-finite number or an index out of range are
+ *  skipped. Returns 0, or -1 on failure (a null array with a non-zero count, more than 2^22 vertices or 2^23
+ *  triangles). */
+VR_API int vr_canvas_draw_triangles(vr_canvas* c, const double* vertices, size_t vertex_count, const unsigned* indices,
+                                    size_t triangle_count, int gouraud, int zbuffer, int antialias);
 
 /* ---- composite operator names ---- */
 

@@ -6,6 +6,7 @@
 
 #include "capi/handles.hpp"
 #include "vraster/fxaa.hpp"
+#include "vraster/mesh_io.hpp"
 
 using vraster::capi::guard;
 using vraster::capi::present;
@@ -400,6 +401,38 @@ long long vr_canvas_flood_fill_to_boundary(vr_canvas* c, int x, int y, double r,
   options.tolerance = tolerance;
   if (!std::isfinite(br) || !std::isfinite(bg) || !std::isfinite(bb) || !std::isfinite(ba)) return 0;
   return flood(c, __func__, x, y, Color{float(r), float(g), float(b), float(a)}, connectivity, options);
+}
+
+int vr_canvas_draw_triangles(vr_canvas* c, const double* vertices, size_t vertex_count, const unsigned* indices,
+                             size_t triangle_count, int gouraud, int zbuffer, int antialias) {
+  if ((vertex_count > 0 && vertices == nullptr) || (triangle_count > 0 && indices == nullptr)) {
+    set_error("vr_canvas_draw_triangles: a null array with a non-zero count");
+    return -1;
+  }
+  if (vertex_count > kMaxMeshVertices || triangle_count > kMaxMeshTriangles) {
+    set_error("vr_canvas_draw_triangles: more than 2^22 vertices or 2^23 triangles");
+    return -1;
+  }
+  return with_canvas(c, __func__, [&](vr_canvas& s) {
+    Mesh mesh;
+    mesh.vertices.resize(vertex_count);
+    for (std::size_t i = 0; i < vertex_count; ++i) {
+      const double* v = vertices + 7 * i;
+      MeshVertex& out = mesh.vertices[i];
+      out.position = {v[0], v[1]};
+      out.depth = v[2];
+      out.color = Color{float(v[3]), float(v[4]), float(v[5]), float(v[6])};
+    }
+    mesh.triangles.resize(triangle_count);
+    for (std::size_t t = 0; t < triangle_count; ++t) {
+      for (std::size_t k = 0; k < 3; ++k) mesh.triangles[t][k] = indices[3 * t + k];
+    }
+    MeshOptions options;
+    options.shading = gouraud ? Shading::Gouraud : Shading::Flat;
+    options.depth = zbuffer ? DepthMode::ZBuffer : DepthMode::None;
+    options.antialias = antialias != 0;
+    s.canvas.draw_mesh(mesh, options);
+  });
 }
 
 int vr_canvas_apply_fxaa(vr_canvas* c) {

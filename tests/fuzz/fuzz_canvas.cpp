@@ -73,7 +73,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   vr_paint* paint = nullptr;
   int segments = 0;  // path commands since the last begin_path (bounded: the exact sweep is quadratic)
   for (int calls = 0; calls < 200 && in.more(); ++calls) {
-    const int op = in.byte() % 48;
+    const int op = in.byte() % 49;
     if (op >= 7 && op <= 16 && ++segments > 64) {
       check_status(vr_canvas_begin_path(c));
       segments = 0;
@@ -237,6 +237,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         check_status(vr_canvas_fill(nullptr, VR_FILL_NONZERO));
         check_status(vr_canvas_set_fill_paint(c, nullptr));
         if (vr_canvas_get_pixels(nullptr, 0, 0, 1, 1) != nullptr) std::abort();
+        break;
+      }
+      case 48: {  // a small mesh: hostile numbers, indices out of range, every mode
+        double vertices[6 * 7];
+        const std::size_t n = in.small(7);
+        for (std::size_t i = 0; i < n * 7; ++i) vertices[i] = in.number();
+        unsigned indices[4 * 3];
+        const std::size_t t = in.small(5);
+        for (std::size_t i = 0; i < t * 3; ++i) indices[i] = in.small(8);
+        s = vr_canvas_draw_triangles(c, vertices, n, indices, t, in.small(2), in.small(2), in.small(2));
         break;
       }
     }
