@@ -225,5 +225,29 @@ TEST(SvgDraw, SixteenBitTargetsGetTheSameDrawing) {
   EXPECT_NEAR(image.pixel(5, 5)[3], 32768, 64);
 }
 
+TEST(SvgDraw, HiddenShapesCountInTheGroupsBoundingBox) {
+  // The clip keeps the left half of the group's box. The hidden rect makes the box 0..100 (clip at x = 50);
+  // without it the box would be 20..60 (clip at x = 40).
+  const Image img = draw(
+      "<clipPath id='c' clipPathUnits='objectBoundingBox'><rect width='0.5' height='1'/></clipPath>"
+      "<g clip-path='url(#c)'><rect width='100' height='100' fill='red' visibility='hidden'/>"
+      "<rect x='20' y='20' width='40' height='60' fill='green'/></g>");
+  expect_pixel(img, 45, 50, kGreen, 0);
+  expect_pixel(img, 55, 50, kClear, 0);
+  expect_pixel(img, 10, 50, kClear, 0);  // the hidden rect draws nothing
+}
+
+TEST(SvgDraw, RootBackgroundColorFillsTheViewport) {
+  const Tree tree = parse_svg_tree("<svg xmlns='http://www.w3.org/2000/svg' width='100' height='100' "
+                                   "viewBox='50 50 10 10' style='background-color: blue'>"
+                                   "<rect x='50' y='50' width='5' height='5' fill='green'/></svg>");
+  Image img(100, 100);
+  img.clear(Color::transparent());
+  render_tree(tree, img);
+  expect_pixel(img, 25, 25, kGreen, 0);
+  expect_pixel(img, 75, 75, {0, 0, 255, 255}, 0);  // outside the viewBox content, still the background
+  expect_pixel(img, 99, 0, {0, 0, 255, 255}, 0);
+}
+
 }  // namespace
 }  // namespace vraster::svg

@@ -132,7 +132,10 @@ TEST(SvgMarker, ContextPaintsInUseAreTheUsesPaints) {
   ASSERT_TRUE(rect.fill && rect.stroke);
   EXPECT_EQ(rect.fill->paint.color.g, 1.f);    // lime
   EXPECT_EQ(rect.stroke->paint.color.b, 1.f);  // blue
-  EXPECT_EQ(t.root.children.size(), 1u);       // no context element: context-fill is none, nothing painted
+  // No context element: context-fill is none; the rect paints nothing (it stays for bounding boxes).
+  ASSERT_EQ(t.root.children.size(), 2u);
+  const PathNode& plain = std::get<PathNode>(t.root.children.at(1).value);
+  EXPECT_FALSE(plain.fill || plain.stroke);
 }
 
 TEST(SvgMarker, MarkersInsideMarkersAreIgnored) {

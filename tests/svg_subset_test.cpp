@@ -23,6 +23,7 @@ using vraster::svg::parse_color;
 using vraster::svg::parse_path_data;
 using vraster::svg::parse_svg;
 using vraster::svg::parse_transform;
+using vraster::svg::parse_css_transform;
 using vraster::svg::ParseError;
 using vraster::svg::PathDataError;
 
@@ -401,6 +402,36 @@ TEST(SvgColor, RgbFunction) {
   expect_color(parse_color("rgb(300, -5, 0)", none), 255, 0, 0);  // clamped, as CSS says
   expect_color(parse_color("rgba(0, 0, 255, 0.25)", none), 0, 0, 255, 0.25);
   EXPECT_FALSE(none);
+}
+
+TEST(SvgColor, RgbMixesNumbersAndPercentagesOnlyWithoutCommas) {
+  // CSS Color 4: the legacy comma form takes three numbers or three percentages; the space form may mix them.
+  bool none = true;
+  EXPECT_FALSE(parse_color("rgba(0, 50%, 0, 0.5)", none).has_value());
+  EXPECT_FALSE(parse_color("rgb(100%, 0, 0)", none).has_value());
+  expect_color(parse_color("rgb(0 50% 0 / 0.5)", none), 0, 127.5, 0, 0.5);
+  expect_color(parse_color("rgba(0%, 50%, 0%, 50%)", none), 0, 127.5, 0, 0.5);  // alpha may be either
+}
+
+TEST(SvgTransform, CssTransformSyntax) {
+  // CSS Transforms 1: units on lengths and angles, commas between arguments, functions SVG lacks.
+  Affine m;
+  ASSERT_TRUE(parse_css_transform("translate(10px, 1in) rotate(0.25turn)", m));
+  EXPECT_NEAR(m.a, 0, 1e-12);
+  EXPECT_NEAR(m.b, 1, 1e-12);
+  EXPECT_NEAR(m.e, 10, 1e-12);
+  EXPECT_NEAR(m.f, 96, 1e-12);
+  ASSERT_TRUE(parse_css_transform("scaleX(2) translateY(3px) skew(45deg)", m));
+  EXPECT_NEAR(m.a, 2, 1e-12);
+  EXPECT_NEAR(m.c, 2, 1e-12);  // scaleX(2) * skewX(45deg): tan 45 = 1, times 2
+  EXPECT_NEAR(m.f, 3, 1e-12);
+  ASSERT_TRUE(parse_css_transform("none", m));
+  EXPECT_TRUE(m.is_identity());
+  ASSERT_TRUE(parse_css_transform("rotate(0)", m));  // a bare zero needs no unit
+  for (const char* bad : {"rotate(45)", "translate(10 20)", "translate(10, 20)", "scale(2px)", "translate(5%)",
+                          "scale (2)", "matrix(1,0,0,1,0)", "", "skew(1deg, 2deg, 3deg)"}) {
+    EXPECT_FALSE(parse_css_transform(bad, m)) << bad;
+  }
 }
 
 TEST(SvgColor, None) {

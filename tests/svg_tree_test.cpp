@@ -315,9 +315,108 @@ TEST(SvgTree, DisplayVisibilityAndPaintOrder) {
                       " stroke='red' paint-order='stroke' shape-rendering='crispEdges'/></g>");
   ASSERT_EQ(t.root.children.size(), 1u);
   const Group& g = group_at(t.root, 0);
+  ASSERT_EQ(g.children.size(), 2u);
+  // The hidden rect paints nothing but keeps its geometry (it counts in the group's bounding box).
+  EXPECT_FALSE(path_at(g, 0).fill || path_at(g, 0).stroke);
+  EXPECT_FALSE(path_at(g, 0).path.empty());
+  EXPECT_TRUE(path_at(g, 1).stroke_first);
+  EXPECT_TRUE(path_at(g, 1).crisp_edges);
+}
+
+TEST(SvgTree, ResourcesInheritFromTheirOwnAncestors) {
+  // clip-rule into a clipPath, color into stops (currentColor) and mask-type given in `style`: a resource takes
+  // its inherited properties from where it is in the document, not from the element that refers to it.
+  const Tree t = tree("<g clip-rule='evenodd' color='lime'><clipPath id='c'><rect width='5' height='5'/></clipPath>"
+                      "<defs><linearGradient id='lg'><stop offset='0' stop-color='yellow'/>"
+                      "<stop offset='1' stop-color='currentColor'/></linearGradient></defs></g>"
+                      "<mask id='m' style='mask-type: alpha'><rect width='5' height='5' fill='white'/></mask>"
+                      "<rect width='5' height='5' color='red' clip-path='url(#c)' mask='url(#m)' fill='url(#lg)'/>");
+  const Group& g = group_at(t.root, 0);
+  ASSERT_TRUE(g.clip && g.clip->content);
+  EXPECT_EQ(path_at(*g.clip->content, 0).fill->rule, FillRule::EvenOdd);
+  ASSERT_TRUE(g.mask);
+  EXPECT_FALSE(g.mask->luminance);
+  const Paint& fill = path_at(g, 0).fill->paint;
+  ASSERT_EQ(fill.kind, Paint::Kind::Gradient);
+  expect_rgba(fill.gradient->stops.at(1).color, 0, 255, 0);  // the g's colour, not the rect's red
+}
+
+TEST(SvgTree, TransformFromCssBeatsTheAttribute) {
+  const Tree t = tree("<style>#s { transform: translate(10px, 5px) rotate(90deg) }</style>"
+                      "<rect width='1' height='1' transform='translate(3)' style='transform: scale(2)'/>"
+                      "<rect id='s' width='1' height='1' transform='translate(3)'/>"
+                      "<rect width='1' height='1' transform='translate(3)' style='transform: rotate(90)'/>"
+                      "<rect width='1' height='1' transform='translate(3)' style='transform: none'/>");
+  ASSERT_EQ(t.root.children.size(), 4u);
+  expect_affine(group_at(t.root, 0).transform, 2, 0, 0, 2, 0, 0);
+  expect_affine(group_at(t.root, 1).transform, 0, 1, -1, 0, 10, 5);
+  // CSS wants a unit on a non-zero angle: the declaration is dropped and the attribute applies.
+  expect_affine(group_at(t.root, 2).transform, 1, 0, 0, 1, 3, 0);
+  EXPECT_FALSE(t.warnings.empty());
+  // transform: none wins over the attribute: the rect has no transform and needs no group.
+  EXPECT_NE(std::get_if<PathNode>(&t.root.children.at(3).value), nullptr);
+}
+
+TEST(SvgTree, EmAndExFollowTheElementsFontSize) {
+  const Tree t = tree("<g font-size='20'><rect x='1em' y='1ex' width='2em' height='2ex' stroke='black'"
+                      " stroke-width='0.5em' stroke-dashoffset='1em'/>"
+                      "<rect font-size='2em' width='1em' height='1em'/></g>",
+                      "width='200' height='200' font-size='10'");
+  const Group& g = group_at(t.root, 0);
+  const PathNode& r = path_at(g, 0);
+  const Rect b = r.path.bounds();
+  EXPECT_NEAR(b.x0, 20, 1e-9);
+  EXPECT_NEAR(b.y0, 10, 1e-9);  // ex: half the font size
+  EXPECT_NEAR(b.x1, 60, 1e-9);
+  EXPECT_NEAR(b.y1, 30, 1e-9);
+  EXPECT_EQ(r.stroke->style.width, 10);
+  EXPECT_EQ(r.stroke->style.dash_offset, 20);
+  // font-size in em is the parent's; the rect's other lengths then use its own size (40).
+  EXPECT_NEAR(path_at(g, 1).path.bounds().x1, 40, 1e-9);
+}
+
+TEST(SvgTree, OverflowInheritsFromTheDocumentOnAMarker) {
+  // The UA style sheet hides overflow on markers; `inherit` takes the parent's value, which for the root is the
+  // initial one, visible.
+  const std::string body = "<marker id='m' overflow='inherit'><rect width='9' height='9'/></marker>"
+                           "<path d='M 10 10 L 50 10' stroke='black' marker-start='url(#m)'/>";
+  for (const std::string& root : {std::string("width='100' height='100'"),
+                                  std::string("width='100' height='100' overflow='visible'")}) {
+    const Tree t = tree(body, root);
+    const Group& instances = group_at(group_at(t.root, 0), 1);
+    EXPECT_FALSE(group_at(instances, 0).clip) << root;
+  }
+  const Tree hidden = tree(body, "width='100' height='100' overflow='hidden'");
+  EXPECT_TRUE(group_at(group_at(group_at(hidden.root, 0), 1), 0).clip);
+}
+
+TEST(SvgTree, RootBackgroundColorFromCssOnly) {
+  const Tree t = tree("<rect width='1' height='1'/>", "width='10' height='10' style='background-color: #0000ff80'");
+  ASSERT_TRUE(t.background);
+  expect_rgba(*t.background, 0, 0, 255, 0x80 / 255.0);
+  EXPECT_FALSE(tree("", "width='10' height='10' background-color='blue'").background);  // not an attribute
+  EXPECT_FALSE(tree("<g style='background-color: blue'/>").background);  // only the root's
+}
+
+TEST(SvgTree, NamespacesAreResolvedPerElement) {
+  // The nearest xmlns declaration decides: a default namespace redeclared on a prefixed SVG element puts its
+  // unprefixed children outside SVG.
+  const Tree t = tree("<s:g xmlns='http://www.example.org/notsvg' xmlns:s='http://www.w3.org/2000/svg'>"
+                      "<s:rect width='1' height='1' fill='lime'/><rect width='2' height='2' fill='red'/></s:g>"
+                      "<g xmlns='http://www.w3.org/2000/svg'><rect width='3' height='3'/></g>");
+  ASSERT_EQ(t.root.children.size(), 2u);
+  const Group& g = group_at(t.root, 0);
   ASSERT_EQ(g.children.size(), 1u);
-  EXPECT_TRUE(path_at(g, 0).stroke_first);
-  EXPECT_TRUE(path_at(g, 0).crisp_edges);
+  expect_rgba(path_at(g, 0).fill->paint.color, 0, 255, 0);
+  EXPECT_EQ(group_at(t.root, 1).children.size(), 1u);
+}
+
+TEST(SvgTree, SwitchPassesOverElementsThatAreNotGraphics) {
+  const Tree t = tree("<switch><random/><linearGradient id='x'/><rect width='1' height='1' fill='lime'/>"
+                      "<rect width='1' height='1' fill='red'/></switch>");
+  const Group& s = group_at(t.root, 0);
+  ASSERT_EQ(s.children.size(), 1u);
+  expect_rgba(path_at(s, 0).fill->paint.color, 0, 255, 0);
 }
 
 TEST(SvgTree, InvalidValuesAreAsIfNotGiven) {

@@ -108,15 +108,20 @@ std::optional<Color> parse_hex(std::string_view digits) {
 }
 
 /// rgb(r, g, b) / rgba(r, g, b, a): channels as numbers 0..255 or percentages, alpha as 0..1 or a percentage.
-/// Out-of-range values are clamped, as CSS says. Components may be separated by commas or whitespace.
+/// Out-of-range values are clamped, as CSS says. Components may be separated by commas or whitespace. CSS Color 4:
+/// the comma-separated (legacy) form takes three numbers or three percentages, never a mix of the two; the
+/// space-separated form may mix them.
 std::optional<Color> parse_rgb_function(std::string_view args) {
   float channel[4] = {0, 0, 0, 1};
+  bool channel_percent[3] = {false, false, false};
+  bool commas = false;
   std::size_t pos = 0;
   int count = 0;
   detail::skip_wsp(args, pos);
   while (pos < args.size() && count < 4) {
     if (count > 0) {
       const bool comma = detail::skip_comma_wsp(args, pos);
+      commas = commas || comma;
       if (!comma && count == 3 && pos < args.size() && args[pos] == '/') {  // CSS 4 "rgb(r g b / a)"
         ++pos;
         detail::skip_wsp(args, pos);
@@ -126,11 +131,14 @@ std::optional<Color> parse_rgb_function(std::string_view args) {
     if (detail::scan_number(args, pos, v) != NumberScan::Ok) return std::nullopt;
     const bool percent = pos < args.size() && args[pos] == '%';
     if (percent) ++pos;
+    if (count < 3) channel_percent[count] = percent;
     const double scale = percent ? 100.0 : (count == 3 ? 1.0 : 255.0);
     channel[count++] = static_cast<float>(std::clamp(v / scale, 0.0, 1.0));
     detail::skip_wsp(args, pos);
   }
   if (pos != args.size() || count < 3) return std::nullopt;
+  const bool mixed = channel_percent[0] != channel_percent[1] || channel_percent[1] != channel_percent[2];
+  if (commas && mixed) return std::nullopt;
   return Color{channel[0], channel[1], channel[2], channel[3]};
 }
 

@@ -108,7 +108,10 @@ struct Style {
   bool isolate = false;
   Color stop_color{0, 0, 0, 1};
   float stop_opacity = 1;
-  bool overflow_visible = false;
+  bool overflow_visible = true;  // the initial value; the UA style sheet hides it on viewports (computed())
+  bool mask_luminance = true;  // mask-type
+  std::optional<Affine> css_transform;  // `transform` from CSS (style sheets, style attribute): beats the attribute
+  std::optional<Color> background;       // background-color (CSS only; drawn for the root element)
   detail::TextProperties text;  // font, spacing, anchor, baselines, decorations (text.hpp)
 
   /// The style a child starts from: inherited properties kept, the others at their initial values.
@@ -122,7 +125,10 @@ struct Style {
     s.isolate = false;
     s.stop_color = Color{0, 0, 0, 1};
     s.stop_opacity = 1;
-    s.overflow_visible = false;
+    s.overflow_visible = true;
+    s.mask_luminance = true;
+    s.css_transform.reset();
+    s.background.reset();
     s.text.reset_non_inherited();
     return s;
   }
@@ -137,7 +143,7 @@ constexpr std::string_view kProperties[] = {
     "clip-path",      "clip-rule",        "mask",              "filter",         "mix-blend-mode",
     "isolation",      "stop-color",       "stop-opacity",      "paint-order",    "shape-rendering",
     "overflow",       "marker-start",     "marker-mid",        "marker-end",     "marker",
-    "image-rendering", "transform"};
+    "image-rendering", "transform",        "mask-type",         "background-color"};
 
 bool is_property(std::string_view name) {
   return std::find(std::begin(kProperties), std::end(kProperties), name) != std::end(kProperties) ||
@@ -194,6 +200,7 @@ class Builder {
 
   Tree run() {
     buffer_.assign(text_.begin(), text_.end());
+    font_size_ = options_.default_font_size;
     const pugi::xml_parse_result result =
         xml_.load_buffer_inplace(buffer_.data(), buffer_.size(), pugi::parse_default | pugi::parse_ws_pcdata,
                                  pugi::encoding_utf8);  // white-space-only text counts in <text>
@@ -212,11 +219,10 @@ class Builder {
     tree_.file = file_;
     count_element(element_offset(root), 1);
     set_up_viewport(root);
-    Style initial;
-    initial.text.font_size = options_.default_font_size;
-    Style style = computed(root, initial);
+    Style style = computed(root, initial_style());
     tree_.root.id = root.attribute("id").value();
-    tree_.root.transform = root_transform(root);
+    tree_.root.transform = root_transform(root, style);
+    tree_.background = style.background;
     if (style.displayed) {
       children(root, style, tree_.root.children, 1);
       apply_group_effects(style, tree_.root);
@@ -370,6 +376,7 @@ class Builder {
         for (const pugi::xml_attribute a : node.attributes()) {
           const std::string_view name = a.name();
           if (name.substr(0, 6) == "xmlns:" && a.value() == kSvgNamespace) svg_prefixes_.emplace_back(name.substr(6));
+          if (node != root && (name == "xmlns" || name.substr(0, 6) == "xmlns:")) scoped_namespaces_ = true;
         }
         if (const pugi::xml_attribute id = node.attribute("id")) ids_.emplace(std::string_view(id.value()), node);
         if (std::string_view(node.name()) == "style" || std::string_view(node.name()).ends_with(":style"))
@@ -403,11 +410,36 @@ class Builder {
   std::string_view local_name(pugi::xml_node node) const {
     const std::string_view full = node.name();
     const std::size_t colon = full.find(':');
-    if (colon == std::string_view::npos) return full;
-    const std::string_view prefix = full.substr(0, colon);
-    if (std::find(svg_prefixes_.begin(), svg_prefixes_.end(), prefix) != svg_prefixes_.end())
-      return full.substr(colon + 1);
-    return {};
+    const std::string_view prefix = colon == std::string_view::npos ? std::string_view{} : full.substr(0, colon);
+    if (!in_svg_namespace(node, prefix)) return {};
+    return colon == std::string_view::npos ? full : full.substr(colon + 1);
+  }
+
+  /// Whether an element whose name has `prefix` (empty: none) is in the SVG namespace. When only the root
+  /// declares namespaces (nearly every file), a prefix is SVG when it is bound to it and no prefix always is
+  /// (documents without xmlns are accepted). Otherwise the nearest declaration of the prefix among the element
+  /// and its ancestors decides (XML Namespaces 1.0, 6.1-6.2), cached per element.
+  bool in_svg_namespace(pugi::xml_node node, std::string_view prefix) const {
+    if (!scoped_namespaces_)
+      return prefix.empty() || std::find(svg_prefixes_.begin(), svg_prefixes_.end(), prefix) != svg_prefixes_.end();
+    const auto cached = svg_namespace_cache_.find(node.internal_object());
+    if (cached != svg_namespace_cache_.end()) return cached->second;
+    const std::string declaration = prefix.empty() ? "xmlns" : "xmlns:" + std::string(prefix);
+    bool svg = prefix.empty();  // no declaration: no prefix is SVG, an unbound prefix is not
+    for (pugi::xml_node n = node; n && n.type() == pugi::node_element; n = n.parent()) {
+      if (const pugi::xml_attribute a = n.attribute(declaration.c_str())) {
+        svg = std::string_view(a.value()) == kSvgNamespace;
+        break;
+      }
+      const auto parent_cached = svg_namespace_cache_.find(n.parent().internal_object());
+      if (prefix.empty() && parent_cached != svg_namespace_cache_.end() &&
+          std::string_view(n.parent().name()).find(':') == std::string_view::npos) {
+        svg = parent_cached->second;  // an unprefixed parent's answer is this element's
+        break;
+      }
+    }
+    svg_namespace_cache_.emplace(node.internal_object(), svg);
+    return svg;
   }
 
   /// The element an href (or xlink:href) points to in this document, or a null node (warns when it is not a
@@ -438,14 +470,16 @@ class Builder {
     double number = 0;
     if (scan_number(v, pos, number) != NumberScan::Ok) return false;
     const std::string_view unit = v.substr(pos);
-    // CSS absolute units at 96 px per inch; em and ex at the default 16px font.
+    // CSS absolute units at 96 px per inch; em is the font size of the element the length is on, ex half of it
+    // (the x-height of a font is not known here; half an em is CSS's fallback).
     static constexpr std::pair<std::string_view, double> kUnits[] = {
-        {"", 1},    {"px", 1}, {"pt", 96.0 / 72.0}, {"pc", 16}, {"mm", 96.0 / 25.4}, {"cm", 96.0 / 2.54}, {"in", 96},
-        {"em", 16}, {"ex", 8}};
+        {"", 1}, {"px", 1}, {"pt", 96.0 / 72.0}, {"pc", 16}, {"mm", 96.0 / 25.4}, {"cm", 96.0 / 2.54}, {"in", 96}};
     double scale = 0;
     for (const auto& [name, factor] : kUnits) {
       if (iequals(unit, name)) scale = factor;
     }
+    if (iequals(unit, "em")) scale = font_size_;
+    if (iequals(unit, "ex")) scale = font_size_ / 2;
     if (unit == "%") {
       const double w = percent_width_, h = percent_height_;
       const double reference = axis == Axis::X ? w : axis == Axis::Y ? h : std::sqrt((w * w + h * h) / 2);
@@ -571,12 +605,19 @@ class Builder {
   /// inherited values.
   Style computed(pugi::xml_node node, const Style& parent) {
     Style style = parent.inherited();
+    // The UA style sheet (SVG 2, appendix "User agent style sheet"): elements that establish a viewport, and
+    // patterns, clip their content unless told otherwise.
+    const std::string_view element_name = local_name(node);
+    if (element_name == "symbol" || element_name == "image" || element_name == "marker" || element_name == "pattern" ||
+        (element_name == "svg" && node != xml_.document_element()))
+      style.overflow_visible = false;
     std::vector<css::Declaration> own;  // presentation attributes and the style attribute
     std::vector<std::pair<css::Origin, std::size_t>> own_origin;
     for (const pugi::xml_attribute attr : node.attributes()) {
       const std::string_view name = attr.name();
-      // transform is an attribute here, not CSS; the `marker` shorthand is CSS only (SVG 2, 11.6.2).
-      if (!is_property(name) || name == "transform" || name == "marker") continue;
+      // The transform attribute has SVG's grammar (own_transform reads it; a CSS transform beats it); the
+      // `marker` shorthand (SVG 2, 11.6.2) and background-color are CSS only.
+      if (!is_property(name) || name == "transform" || name == "marker" || name == "background-color") continue;
       if (detail::is_text_property(name) && !detail::is_text_attribute(name)) continue;
       const std::string_view raw = attr.value();
       const std::string_view v = trim(raw);
@@ -614,7 +655,18 @@ class Builder {
       }
     }
     css::sort_cascade(cascade);
-    for (const css::Cascaded& c : cascade) apply(c.declaration->name, c.declaration->value, c.declaration->offset, style, parent);
+    // The font size first: em and ex in the other properties (stroke-width="2em") refer to it.
+    const auto is_font_size = [](const css::Cascaded& c) {
+      return c.declaration->name == "font-size" || c.declaration->name == "font";
+    };
+    std::stable_partition(cascade.begin(), cascade.end(), is_font_size);
+    const double saved_font_size = font_size_;
+    font_size_ = parent.text.font_size;  // em in font-size itself is the parent's (text_properties.cpp)
+    for (const css::Cascaded& c : cascade) {
+      if (!is_font_size(c) && font_size_ != style.text.font_size) font_size_ = style.text.font_size;
+      apply(c.declaration->name, c.declaration->value, c.declaration->offset, style, parent);
+    }
+    font_size_ = saved_font_size;
     return style;
   }
 
@@ -691,6 +743,20 @@ class Builder {
       s.stop_color = *color;
     } else if (name == "display") {
       s.displayed = v != "none";
+    } else if (name == "mask-type") {
+      if (v == "luminance" || v == "alpha")
+        s.mask_luminance = v == "luminance";
+      else
+        bad();
+    } else if (name == "transform") {
+      Affine m;
+      if (!parse_css_transform(v, m)) return bad();
+      s.css_transform = m;
+    } else if (name == "background-color") {
+      bool none = false;
+      const std::optional<Color> color = iequals(v, "currentColor") ? s.current_color : parse_color(v, none);
+      if (!color) return bad();
+      s.background = *color;
     } else if (name == "visibility") {
       if (v == "visible")
         s.visible = true;
@@ -787,6 +853,10 @@ class Builder {
     else if (name == "clip-path") s.clip_path = p.clip_path;
     else if (name == "mask") s.mask = p.mask;
     else if (name == "image-rendering") s.smooth_images = p.smooth_images;
+    else if (name == "overflow") s.overflow_visible = p.overflow_visible;
+    else if (name == "mask-type") s.mask_luminance = p.mask_luminance;
+    else if (name == "transform") s.css_transform = p.css_transform;
+    else if (name == "background-color") s.background = p.background;
     else detail::inherit_text_property(name, s.text, p.text);
     if (name == "marker-start" || name == "marker") s.marker_start = p.marker_start;
     if (name == "marker-mid" || name == "marker") s.marker_mid = p.marker_mid;
@@ -929,12 +999,16 @@ class Builder {
   }
 
   /// The root group's transform: its own transform applies in the viewport, outside the viewBox mapping.
-  Affine root_transform(pugi::xml_node root) { return own_transform(root) * root_viewport_; }
+  Affine root_transform(pugi::xml_node root, const Style& style) { return own_transform(root, &style) * root_viewport_; }
 
   /// The transform attribute (identity when absent or invalid, with a warning).
-  Affine own_transform(pugi::xml_node node) {
+  /// The element's transform: a CSS `transform` in `style` (from a style sheet or style attribute) when there is
+  /// one, else the transform attribute (SVG 2: the attribute is the property's presentation attribute).
+  Affine own_transform(pugi::xml_node node, const Style* style = nullptr) {
     Affine own;
-    if (const pugi::xml_attribute t = node.attribute("transform")) {
+    if (style && style->css_transform) {
+      own = *style->css_transform;
+    } else if (const pugi::xml_attribute t = node.attribute("transform")) {
       if (!parse_transform(t.value(), own)) {
         warn("invalid values", value_offset(t), "invalid transform " + quoted(t.value()) + ", ignored");
         own = Affine{};
@@ -1131,6 +1205,13 @@ class Builder {
   }
 
   /// Elements that never render where they stand (referenced only, or holding no graphics).
+  static bool switch_candidate(std::string_view name) {
+    static constexpr std::string_view kNames[] = {"a",    "foreignObject", "g",      "image",   "svg",     "switch",
+                                                  "text", "use",           "path",   "rect",    "circle",  "ellipse",
+                                                  "line", "polyline",      "polygon"};
+    return std::find(std::begin(kNames), std::end(kNames), name) != std::end(kNames);
+  }
+
   static bool never_rendered(std::string_view name) {
     static constexpr std::string_view kNames[] = {
         "defs",   "title", "desc",   "metadata", "symbol", "linearGradient", "radialGradient", "pattern", "clipPath",
@@ -1162,6 +1243,19 @@ class Builder {
     if (!style.mask.empty()) g.mask = mask(style.mask);
   }
 
+  /// Sets the font size that em and ex lengths refer to for as long as it lives.
+  class FontSizeScope {
+   public:
+    FontSizeScope(Builder& b, double font_size) : b_(b), saved_(std::exchange(b.font_size_, font_size)) {}
+    ~FontSizeScope() { b_.font_size_ = saved_; }
+    FontSizeScope(const FontSizeScope&) = delete;
+    FontSizeScope& operator=(const FontSizeScope&) = delete;
+
+   private:
+    Builder& b_;
+    double saved_;
+  };
+
   /// Appends what `node` draws to `out`.
   void element(pugi::xml_node node, const Style& parent, std::vector<Node>& out, int depth) {
     const std::size_t at = element_offset(node);
@@ -1181,10 +1275,11 @@ class Builder {
     if (in_clip_ && !shape && name != "use" && name != "text") return;
     const Style style = computed(node, parent);
     if (!style.displayed) return;  // display: none hides the whole subtree
+    const FontSizeScope font_size(*this, style.text.font_size);  // for em and ex in the attributes
 
     Group group;
     group.id = node.attribute("id").value();
-    group.transform = own_transform(node);
+    group.transform = own_transform(node, &style);
     if (!group.transform.is_finite()) fail(at, "transform out of range");
     apply_group_effects(style, group);
 
@@ -1192,8 +1287,9 @@ class Builder {
       if (name == "switch") {
         for (const pugi::xml_node child : node.children()) {
           if (child.type() != pugi::node_element || !conditions_pass(child)) continue;
-          const std::string_view child_name = local_name(child);
-          if (child_name.empty() || never_rendered(child_name)) continue;
+          // Only graphics and container elements are candidates (SVG 2, 5.8.2: what switch may contain);
+          // an unknown element or a resource is passed over.
+          if (!switch_candidate(local_name(child))) continue;
           element(child, style, group.children, depth + 1);
           break;
         }
@@ -1251,7 +1347,9 @@ class Builder {
         warn_about_dashes(path, style.stroke_style, at);
       }
     }
-    if (!p.fill && !p.stroke) return std::nullopt;
+    // A shape that paints nothing (fill and stroke none, visibility hidden) still counts in the bounding box
+    // of the groups around it (SVG 2, 8.10: every rendered element's geometry); in a clip path it is nothing.
+    if (!p.fill && !p.stroke && in_clip_) return std::nullopt;
     p.path = std::move(path);
     p.stroke_first = style.stroke_first;
     p.crisp_edges = style.crisp_edges;
@@ -1425,11 +1523,20 @@ class Builder {
     return content;
   }
 
-  /// The computed style of `node` cascaded from the root down through its ancestors.
+  /// The style the root element inherits from: initial values, the default font size.
+  Style initial_style() const {
+    Style initial;
+    initial.text.font_size = options_.default_font_size;
+    return initial;
+  }
+
+  /// The computed style of `node` cascaded from the root down through its ancestors. Resources (paint servers,
+  /// clip paths, masks, markers) take their properties from where they are in the document, not from the
+  /// element that refers to them.
   Style style_from_ancestors(pugi::xml_node node) {
     std::vector<pugi::xml_node> chain;
     for (pugi::xml_node n = node; n && n.type() == pugi::node_element; n = n.parent()) chain.push_back(n);
-    Style style;
+    Style style = initial_style();
     for (auto it = chain.rbegin(); it != chain.rend(); ++it) style = computed(*it, style);
     return style;
   }
@@ -1541,7 +1648,7 @@ class Builder {
       if (symbol_style.displayed) {
         Group symbol;
         apply_group_effects(symbol_style, symbol);
-        symbol.transform = own_transform(target);
+        symbol.transform = own_transform(target, &symbol_style);
         nested_viewport(target, target, symbol_style, symbol, depth + 1, length_attribute(node, "width", Axis::X),
                         length_attribute(node, "height", Axis::Y));
         if (!symbol.children.empty()) group.children.push_back(Node{std::move(symbol)});
@@ -1951,10 +2058,12 @@ class Builder {
     // Stops: those of the first element in the chain that has any.
     for (const pugi::xml_node n : chain) {
       bool any = false;
+      std::optional<Style> gradient_style;  // what the stops inherit (their color for currentColor)
       for (const pugi::xml_node stop : n.children()) {
         if (stop.type() != pugi::node_element || local_name(stop) != "stop") continue;
         any = true;
-        const Style s = computed(stop, Style{});
+        if (!gradient_style) gradient_style = style_from_ancestors(n);
+        const Style s = computed(stop, *gradient_style);
         double offset = 0;
         if (const pugi::xml_attribute o = stop.attribute("offset")) {
           const std::optional<double> v = number_or_percent(o.value());
@@ -1998,7 +2107,7 @@ class Builder {
     auto content = std::make_shared<Group>();
     for (const pugi::xml_node n : chain) {
       if (!n.first_child()) continue;
-      const Style s = computed(n, Style{});
+      const Style s = style_from_ancestors(n);
       const bool was_in_clip = std::exchange(in_clip_, false);
       children(n, s, content->children, 1);
       in_clip_ = was_in_clip;
@@ -2033,8 +2142,8 @@ class Builder {
     auto clip = std::make_shared<ClipPath>();
     clip->id = id;
     clip->units = units_of(node.attribute("clipPathUnits"), Units::UserSpaceOnUse);
-    clip->transform = own_transform(node);
-    const Style s = computed(node, Style{});
+    const Style s = style_from_ancestors(node);
+    clip->transform = own_transform(node, &s);
     auto content = std::make_shared<Group>();
     const bool was_in_clip = std::exchange(in_clip_, true);
     ++in_clip_path_;  // a clip path is the shapes' geometry: no markers, no images
@@ -2066,6 +2175,8 @@ class Builder {
     m->id = id;
     m->units = units_of(node.attribute("maskUnits"), Units::ObjectBoundingBox);
     m->content_units = units_of(node.attribute("maskContentUnits"), Units::UserSpaceOnUse);
+    const Style s = style_from_ancestors(node);
+    const FontSizeScope font_size(*this, s.text.font_size);
     auto get = [&](const char* name, Axis axis, double fallback) {
       return server_length(node.attribute(name), m->units, axis).value_or(fallback);
     };
@@ -2074,8 +2185,7 @@ class Builder {
     const double y = get("y", Axis::Y, bbox ? -0.1 : -0.1 * percent_height_);
     m->rect = Rect{x, y, x + get("width", Axis::X, bbox ? 1.2 : 1.2 * percent_width_),
                    y + get("height", Axis::Y, bbox ? 1.2 : 1.2 * percent_height_)};
-    m->luminance = trim(node.attribute("mask-type").value()) != "alpha";
-    const Style s = computed(node, Style{});
+    m->luminance = s.mask_luminance;
     auto content = std::make_shared<Group>();
     const bool was_in_clip = std::exchange(in_clip_, false);
     children(node, s, content->children, 1);
@@ -2109,9 +2219,12 @@ class Builder {
   std::optional<ViewBox> root_view_box_;
   Affine root_viewport_;
   double percent_width_ = 0, percent_height_ = 0;  // what percentages of lengths refer to
+  double font_size_ = 16;  // what em and ex refer to: the font size of the element whose lengths are read
   std::size_t element_count_ = 0, use_instances_ = 0;
   std::unordered_map<std::string_view, pugi::xml_node> ids_;
   std::vector<std::string> svg_prefixes_;
+  bool scoped_namespaces_ = false;  // an element other than the root declares a namespace (in_svg_namespace)
+  mutable std::unordered_map<const void*, bool> svg_namespace_cache_;
   css::StyleSheet sheet_;
   std::vector<pugi::xml_node> path_;       // scratch: the ancestors of the element being styled
   std::vector<pugi::xml_node> use_stack_;  // use targets being instanced

@@ -86,7 +86,7 @@ std::optional<Rect> paint_bounds(const Group& g, const Affine& m) {
   std::optional<Rect> box;
   for (const Node& child : g.children) {
     if (const PathNode* p = std::get_if<PathNode>(&child.value)) {
-      if (p->path.empty()) continue;
+      if (p->path.empty() || (!p->fill && !p->stroke)) continue;
       Rect r = p->path.control_bounds();
       if (p->stroke) {
         const double reach = 0.5 * p->stroke->style.width * std::max(p->stroke->style.miter_limit, 1.5);
@@ -617,6 +617,10 @@ DrawStats draw_tree(const Tree& tree, Canvas& canvas, const DrawSettings& settin
   canvas.set_anti_alias(settings.aa);
   canvas.set_tolerance(settings.tolerance);
   Shared shared{settings, tree.file, stats};
+  if (tree.background && tree.background->a > 0) {
+    canvas.set_fill_color(*tree.background);
+    canvas.fill_rect(0, 0, tree.width, tree.height);
+  }
   Drawer(canvas, shared, 0, false).group(tree.root);
   canvas.restore();
   stats.exact_fallbacks += canvas.exact_fallbacks() - fallbacks_before;

@@ -65,6 +65,11 @@ std::optional<Color> parse_color(std::string_view text, bool& is_none);
 /// Parses an SVG transform list ("translate(1 2) rotate(30)"); returns false on a syntax error.
 bool parse_transform(std::string_view text, Affine& out);
 
+/// Parses a CSS `transform` value (CSS Transforms 1: `none` or functions separated by spaces, arguments by
+/// commas; lengths in px or absolute units, angles in deg, rad, grad or turn, a bare number only for 0);
+/// returns false when it is invalid. Percentages (of a reference box) are not supported and make it invalid.
+bool parse_css_transform(std::string_view text, Affine& out);
+
 /// One fill or stroke of a shape, fully resolved: user-space path, its transform to device pixels and paint.
 /// A shape with both gives two items, fill first (SVG's default paint-order).
 struct DrawItem {

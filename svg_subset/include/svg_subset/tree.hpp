@@ -86,8 +86,9 @@ struct Stroke {
   StrokeStyle style;
 };
 
-/// A shape or <path>: geometry in the user space of its parent group. At least one of fill and stroke is set
-/// (a path that paints nothing is left out of the tree).
+/// A shape or <path>: geometry in the user space of its parent group. A shape that paints nothing (fill and
+/// stroke none, or visibility hidden) has neither fill nor stroke: it draws nothing but still counts in the
+/// bounding box of the groups around it (objectBoundingBox clip paths, masks and paints of a group).
 struct PathNode {
   std::string id;
   Path path;
@@ -160,6 +161,9 @@ struct Node {
 struct Tree {
   double width = 0, height = 0;  ///< intrinsic size in CSS px
   Group root;                    ///< root.transform maps the root's user space (viewBox) to the viewport
+  /// The root element's CSS background-color (straight RGBA), painted over the whole viewport before the root
+  /// group, as a browser paints the canvas background of a standalone SVG document; none when not given.
+  std::optional<Color> background;
   std::vector<std::string> warnings;  ///< "LINE:COLUMN: message"
   std::string file;
 };
