@@ -249,5 +249,19 @@ TEST(SvgDraw, RootBackgroundColorFillsTheViewport) {
   expect_pixel(img, 99, 0, {0, 0, 255, 255}, 0);
 }
 
+TEST(SvgDraw, FallbackColourWhereABoundingBoxServerCannotApply) {
+  // A vertical line has a box without width: its objectBoundingBox gradient and pattern give way to the
+  // fallback colour; without one the stroke paints nothing.
+  const Image img = draw(
+      "<linearGradient id='g'><stop offset='0' stop-color='red'/><stop offset='1' stop-color='red'/></linearGradient>"
+      "<pattern id='p' width='1' height='1'><rect width='50' height='50' fill='red'/></pattern>"
+      "<line x1='20' y1='10' x2='20' y2='90' stroke='url(#g) green' stroke-width='4'/>"
+      "<line x1='50' y1='10' x2='50' y2='90' stroke='url(#p) green' stroke-width='4'/>"
+      "<line x1='80' y1='10' x2='80' y2='90' stroke='url(#g)' stroke-width='4'/>");
+  expect_pixel(img, 20, 50, kGreen, 0);
+  expect_pixel(img, 50, 50, kGreen, 0);
+  expect_pixel(img, 80, 50, kClear, 0);
+}
+
 }  // namespace
 }  // namespace vraster::svg

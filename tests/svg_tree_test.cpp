@@ -212,6 +212,36 @@ TEST(SvgTree, PaintFallbacksAndMissingServers) {
   EXPECT_FALSE(path_at(t.root, 2).stroke);  // a missing server without fallback is none
 }
 
+TEST(SvgTree, FallbackAfterAnUnusableServer) {
+  // A gradient without stops cannot paint: the fallback applies (currentColor resolved), else none. A usable
+  // server keeps its fallback for shapes it cannot apply to (objectBoundingBox units on a line).
+  const Tree t = tree("<linearGradient id='empty'/>"
+                      "<linearGradient id='g'><stop offset='0' stop-color='red'/><stop offset='1'/></linearGradient>"
+                      "<rect width='1' height='1' color='lime' fill='url(#empty) currentColor'/>"
+                      "<rect width='1' height='1' fill='url(#empty)' stroke='black'/>"
+                      "<line x2='10' stroke='url(#g) blue'/><line x2='10' stroke='url(#g) none'/>");
+  ASSERT_EQ(t.root.children.size(), 4u);
+  expect_rgba(path_at(t.root, 0).fill->paint.color, 0, 255, 0);
+  EXPECT_FALSE(path_at(t.root, 1).fill);
+  const Paint& blue = path_at(t.root, 2).stroke->paint;
+  EXPECT_EQ(blue.kind, Paint::Kind::Gradient);
+  ASSERT_TRUE(blue.fallback);
+  expect_rgba(*blue.fallback, 0, 0, 255);
+  ASSERT_TRUE(path_at(t.root, 3).stroke->paint.fallback);
+  EXPECT_EQ(path_at(t.root, 3).stroke->paint.fallback->a, 0);  // none: transparent
+}
+
+TEST(SvgTree, GradientGeometryComesOnlyFromTheSameKind) {
+  const Tree t = tree("<radialGradient id='r' y2='1' cx='0.2' spreadMethod='reflect' gradientUnits='userSpaceOnUse'/>"
+                      "<linearGradient id='l' href='#r' x2='0.7'><stop offset='0'/><stop offset='1'/></linearGradient>"
+                      "<rect width='1' height='1' fill='url(#l)'/>");
+  const Gradient& g = *path_at(t.root, 0).fill->paint.gradient;
+  EXPECT_EQ(g.spread, Spread::Reflect);           // common attributes come through
+  EXPECT_EQ(g.units, Units::UserSpaceOnUse);
+  EXPECT_EQ(g.y2, 0);                             // the radial gradient's y2 is not one of its attributes
+  EXPECT_NEAR(g.x2, 0.7, 1e-12);
+}
+
 TEST(SvgTree, PatternRecord) {
   const Tree t = tree("<pattern id='p' width='10' height='20' patternUnits='userSpaceOnUse' viewBox='0 0 1 1'>"
                       "<rect width='1' height='1' fill='red'/></pattern>"

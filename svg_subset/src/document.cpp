@@ -1335,7 +1335,7 @@ class Builder {
     p.id = node.attribute("id").value();
     std::tie(p.line, p.column) = lines_.position(at);
     if (in_clip_) {  // clip geometry: fill and stroke have no effect, clip-rule is the rule
-      if (style.visible) p.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1}, style.clip_rule};
+      if (style.visible) p.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1, {}}, style.clip_rule};
     } else if (style.visible && name != "line") {
       const Paint paint = resolve_paint(style.fill, style.fill_opacity, style);
       if (paint.kind != Paint::Kind::None) p.fill = Fill{paint, style.fill_rule};
@@ -1604,7 +1604,7 @@ class Builder {
     auto content = std::make_shared<Group>();
     PathNode rect;
     rect.path.add_rect(r);
-    rect.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1}, FillRule::NonZero};
+    rect.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1, {}}, FillRule::NonZero};
     content->children.push_back(Node{std::move(rect)});
     clip->content = std::move(content);
     return clip;
@@ -1854,7 +1854,7 @@ class Builder {
     detail::SpanStyle out;
     out.text = s.text;
     if (in_clip_) {  // clip geometry, as path_node: filled with the clip-rule, never stroked
-      if (s.visible) out.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1}, s.clip_rule};
+      if (s.visible) out.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1, {}}, s.clip_rule};
     } else if (s.visible) {
       const Paint fill = resolve_paint(s.fill, s.fill_opacity, s);
       if (fill.kind != Paint::Kind::None) out.fill = Fill{fill, s.fill_rule};
@@ -1934,6 +1934,12 @@ class Builder {
     }
     const pugi::xml_node target = by_id(d.url);
     const std::string_view kind = target ? local_name(target) : std::string_view{};
+    if (d.fallback_kind) {  // kept for shapes the server cannot apply to (draw.cpp)
+      const Paint server = paint;
+      simple(*d.fallback_kind, d.color);
+      const Paint fallback = std::exchange(paint, server);
+      paint.fallback = fallback.kind == Paint::Kind::Color ? fallback.color : Color::transparent();
+    }
     if (kind == "linearGradient" || kind == "radialGradient") {
       const std::shared_ptr<const Gradient> g = gradient(target);
       if (g && g->stops.size() >= 2) {
@@ -1946,7 +1952,7 @@ class Builder {
         paint.color = g->stops[0].color;
         return paint;
       }
-      if (g) return paint;  // no stops: none
+      // No stops: the server is not usable, so the fallback applies (else none).
     } else if (kind == "pattern") {
       if (std::shared_ptr<const Pattern> p = pattern(target)) {
         paint.kind = Paint::Kind::Pattern;
@@ -2036,8 +2042,14 @@ class Builder {
       const std::string_view v = trim(s.value());
       g->spread = v == "reflect" ? Spread::Reflect : v == "repeat" ? Spread::Repeat : Spread::Pad;
     }
+    // The geometry (x1.., cx..) comes only from gradients of the same kind; units, transform, spread and stops
+    // from any gradient of the chain (SVG 2, 14.2: attributes a gradient of the other kind does not have).
+    std::vector<pugi::xml_node> same_kind;
+    for (const pugi::xml_node n : chain) {
+      if (local_name(n) == local_name(node)) same_kind.push_back(n);
+    }
     auto get = [&](const char* name, Axis axis, double fallback) {
-      return server_length(chain_attribute(chain, name), g->units, axis).value_or(fallback);
+      return server_length(chain_attribute(same_kind, name), g->units, axis).value_or(fallback);
     };
     const bool user = g->units == Units::UserSpaceOnUse;
     if (g->kind == Gradient::Kind::Linear) {

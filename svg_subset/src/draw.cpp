@@ -424,6 +424,14 @@ class Drawer {
   /// The canvas paint for a fill or stroke of `shape` (whose box objectBoundingBox units refer to).
   std::optional<vraster::Paint> paint(const svg::Paint& p, const PathNode& shape) {
     auto bbox = [&] { return shape.paint_box ? *shape.paint_box : shape.path.bounds(); };
+    // A server in objectBoundingBox units cannot apply to a box without area (a horizontal or vertical line):
+    // the fallback colour paints instead when there is one (SVG 2, 13.2), else nothing.
+    const bool box_units =
+        (p.kind == svg::Paint::Kind::Gradient && p.gradient && p.gradient->units == Units::ObjectBoundingBox) ||
+        (p.kind == svg::Paint::Kind::Pattern && p.pattern &&
+         (p.pattern->units == Units::ObjectBoundingBox ||
+          (p.pattern->content_units == Units::ObjectBoundingBox && !p.pattern->view_box)));
+    if (box_units && !usable_box(bbox())) return p.fallback ? solid(*p.fallback, p.opacity) : std::nullopt;
     switch (p.kind) {
       case svg::Paint::Kind::None:
         return std::nullopt;

@@ -72,6 +72,10 @@ struct Paint {
   std::shared_ptr<const Gradient> gradient;
   std::shared_ptr<const Pattern> pattern;
   float opacity = 1;
+  /// Gradient or Pattern: the fallback after url() (currentColor resolved; `none` is transparent), painted when
+  /// the server cannot apply to the shape (objectBoundingBox units on a box without width or height). Unset:
+  /// no fallback was given, and such a shape paints nothing.
+  std::optional<Color> fallback;
 };
 
 /// A fill: paint and rule.
