@@ -6,6 +6,7 @@
 #include <string>
 
 #include "svg_subset/svg.hpp"
+#include "svg_subset/tree.hpp"
 #include "vraster/error.hpp"
 #include "vraster/files.hpp"
 #include "vraster/stroke.hpp"
@@ -68,8 +69,51 @@ TEST(HostileXml, UndefinedEntities) {
   expect_error_at(kOpen + "<desc>a &foo; b</desc></svg>", 1, 72, "undefined entity '&foo;'");
   expect_error_at(kOpen + "<desc>AT&T</desc></svg>", 1, 72, "'&' that does not start an entity reference");
   expect_error_at(kOpen + "<desc>&#0;</desc></svg>", 1, 70, "character reference '&#0;'");
-  expect_error_at("<!DOCTYPE svg [<!ENTITY ns 'x'>]>" + kOpen + "<g id=\"&ns;\"/></svg>", 1, 104,
-                  "declared in a DOCTYPE are not supported");
+  expect_error_at("<!DOCTYPE svg [<!ENTITY ns 'x'>]>" + kOpen + "<g id=\"&other;\"/></svg>", 1, 104,
+                  "not declared in the DOCTYPE's internal subset");
+}
+
+// ---- entities declared in the DOCTYPE's internal subset: expanded, within limits ----
+
+TEST(HostileXml, InternalEntitiesAreExpandedInAttributesAndContent) {
+  const std::string text = "<!DOCTYPE svg [\n<!-- a comment -->\n<!ENTITY fill \"lime\">\n"
+                           "<!ENTITY shape \"<rect width='5' height='5' fill='&fill;'/>\">\n"
+                           "<!ENTITY fill 'red'><!ENTITY % pe 'ignored'><!ATTLIST svg a CDATA '>'>]>\n" +
+                           kOpen + "&shape;<g>&shape;</g><rect width='1' height='1' fill='&fill;'/>"
+                           "<!-- &shape; --><desc><![CDATA[&shape;]]></desc></svg>";
+  const vraster::svg::Tree tree = vraster::svg::parse_svg_tree(text);
+  ASSERT_EQ(tree.root.children.size(), 3u);  // the comment and the CDATA section are left alone
+  const auto& first = std::get<vraster::svg::PathNode>(tree.root.children[0].value);
+  EXPECT_EQ(first.fill->paint.color.g, 1.f);  // the first declaration of `fill` binds: lime
+  EXPECT_EQ(first.fill->paint.color.r, 0.f);
+}
+
+TEST(HostileXml, EntityExpansionLimits) {
+  // A billion laughs: ten levels of ten references stop at 1 MiB of growth, naming the entity in the document.
+  std::string laughs = "<!DOCTYPE svg [<!ENTITY a 'lol'>";
+  for (char c = 'b'; c <= 'k'; ++c) {
+    laughs += std::string("<!ENTITY ") + c + " '";
+    for (int i = 0; i < 10; ++i) laughs += std::string("&") + char(c - 1) + ";";
+    laughs += "'>";
+  }
+  laughs += "]>";
+  const int column = static_cast<int>(laughs.size() + kOpen.size() + 7);
+  expect_error_at(laughs + kOpen + "<desc>&k;</desc></svg>", 1, column, "expanding entity '&k;' makes the document");
+  // Loops, nesting past the limit, external entities.
+  expect_error_at("<!DOCTYPE svg [<!ENTITY a '&b;'><!ENTITY b '&a;'>]>\n" + kOpen + "&a;</svg>", 2, 64,
+                  "entity '&a;' refers to itself");
+  std::string deep = "<!DOCTYPE svg [<!ENTITY e0 'x'>";
+  for (int i = 1; i <= 17; ++i) deep += "<!ENTITY e" + std::to_string(i) + " '&e" + std::to_string(i - 1) + ";'>";
+  expect_error_at(deep + "]>\n" + kOpen + "&e17;</svg>", 2, 64, "entity '&e17;' nests entities too deeply");
+  expect_error_at("<!DOCTYPE svg [<!ENTITY x SYSTEM 'file:///etc/passwd'>]>\n" + kOpen + "<desc>&x;</desc></svg>",
+                  2, 70, "external entities are never loaded");
+  std::string many = "<!DOCTYPE svg [";
+  std::size_t last = 0;  // where the declaration over the limit starts
+  for (int i = 0; i <= 10000; ++i) {
+    last = many.size();
+    many += "<!ENTITY n" + std::to_string(i) + " ''>";
+  }
+  expect_error_at(many + "]>" + kOpen + "</svg>", 1, static_cast<int>(last + 1), "too many entity declarations");
 }
 
 TEST(HostileXml, LessThanInAttributeValue) {

@@ -199,6 +199,15 @@ class Builder {
       : text_(text), file_(file), lines_(text), options_(options), image_depth_(image_depth), pixels_left_(pixels_left) {}
 
   Tree run() {
+    // Entities declared in the DOCTYPE are expanded first; positions are then those of the expanded text
+    // (the same as the file's up to the first reference).
+    detail::EntityExpansion expansion = detail::expand_internal_entities(text_);
+    if (expansion.problem) fail(expansion.problem->offset, "malformed XML: " + expansion.problem->message);
+    if (!expansion.text.empty()) {
+      expanded_text_ = std::move(expansion.text);
+      text_ = expanded_text_;
+      lines_ = LineIndex(text_);
+    }
     buffer_.assign(text_.begin(), text_.end());
     font_size_ = options_.default_font_size;
     const pugi::xml_parse_result result =
@@ -2225,6 +2234,7 @@ class Builder {
   bool context_used_ = false;
   std::shared_ptr<text::FontDb> fonts_;  // options_.fonts, or the embedded font alone
   std::size_t text_characters_ = 0;      // laid out so far (detail::kMaxTextCharacters)
+  std::string expanded_text_;  // the text with DOCTYPE entities expanded, when it has any (text_ points here)
   std::string buffer_;  // the private copy pugixml parses in place
   pugi::xml_document xml_;
   Tree tree_;

@@ -94,6 +94,17 @@ std::vector<Case> cases() {
   out.push_back({"text with --font /dev/zero", {"text", "x", "--font", "/dev/zero", "-o", "OUT"}, ""});
   out.push_back({"two root elements", {"render", "IN", "-o", "OUT"}, svg(s10, "") + "<svg/>"});
   out.push_back({"undefined entity", {"render", "IN", "-o", "OUT"}, svg(s10, "<g id=\"&x;\"/>")});
+  {
+    // A billion laughs of DOCTYPE entities (ten levels of ten references): stops at the expansion limit.
+    std::string dtd = "<!DOCTYPE svg [<!ENTITY a \"lol\">";
+    for (char c = 'b'; c <= 'k'; ++c) {
+      dtd += std::string("<!ENTITY ") + c + " \"";
+      for (int i = 0; i < 10; ++i) dtd += std::string("&") + char(c - 1) + ";";
+      dtd += "\">";
+    }
+    out.push_back({"billion laughs of entities", {"render", "IN", "-o", "OUT"},
+                   dtd + "]>" + svg(s10, "<desc>&k;</desc><g id=\"&k;\"/>")});
+  }
   out.push_back({"escape sequences in values", {"render", "IN", "-o", "OUT"},
                  svg(s10, "<rect fill=\"\x1b]0;x\x07\x1b[2J\" width=\"1\" height=\"1\"/>")});
   out.push_back({"100 KB number", {"render", "IN", "-o", "OUT"},
