@@ -105,7 +105,7 @@ TEST(HostileXml, EntityExpansionLimits) {
   std::string deep = "<!DOCTYPE svg [<!ENTITY e0 'x'>";
   for (int i = 1; i <= 17; ++i) deep += "<!ENTITY e" + std::to_string(i) + " '&e" + std::to_string(i - 1) + ";'>";
   expect_error_at(deep + "]>\n" + kOpen + "&e17;</svg>", 2, 64, "entity '&e17;' nests entities too deeply");
-  expect_error_at("<!DOCTYPE svg [<!ENTITY x SYSTEM 'file:///etc/passwd'>]>\n" + kOpen + "<desc>&x;</desc></svg>",
+  expect_error_at("<!DOCTYPE svg [<!ENTITY x SYSTEM 'http://example.org/x.ent'>]>\n" + kOpen + "<desc>&x;</desc></svg>",
                   2, 70, "external entities are never loaded");
   std::string many = "<!DOCTYPE svg [";
   std::size_t last = 0;  // where the declaration over the limit starts
