@@ -153,6 +153,28 @@ TEST(SvgDraw, PatternTileRepeats) {
   expect_pixel(img, 94, 94, kClear, 1);
 }
 
+TEST(SvgDraw, ContextPaintsUseTheContextElementsSpaceAndBox) {
+  // Stripes red on [0, 10) of every 20 user units, given through a use to a rect moved by 5: the stripes stay
+  // where they are in the use's space (SVG 2 context-fill), not where they would be in the rect's own space.
+  const Image stripes = draw(
+      "<pattern id='p' patternUnits='userSpaceOnUse' width='20' height='20'>"
+      "<rect width='10' height='20' fill='red'/></pattern>"
+      "<defs><rect id='r' width='40' height='40' transform='translate(5 0)' fill='context-fill'/></defs>"
+      "<use href='#r' fill='url(#p)'/>");
+  constexpr std::array<int, 4> kRed{255, 0, 0, 255};
+  expect_pixel(stripes, 7, 20, kRed, 1);
+  expect_pixel(stripes, 12, 20, kClear, 1);  // the rect's own space would put red here
+  expect_pixel(stripes, 22, 20, kRed, 1);
+  expect_pixel(stripes, 42, 20, kRed, 1);
+  // An objectBoundingBox gradient spans the use's box (both rects), not each rect's.
+  const Image ramp = draw(
+      "<linearGradient id='g'><stop offset='0' stop-color='black'/><stop offset='1' stop-color='white'/>"
+      "</linearGradient><defs><g id='two'><rect width='50' height='10' fill='context-fill'/>"
+      "<rect x='50' y='20' width='50' height='10' fill='context-fill'/></g></defs><use href='#two' fill='url(#g)'/>");
+  expect_pixel(ramp, 25, 5, {64, 64, 64, 255}, 3);     // 0.255 of the way
+  expect_pixel(ramp, 75, 25, {191, 191, 191, 255}, 3);  // 0.755: in its own box it would be 0.51
+}
+
 TEST(SvgDraw, HostileNumbersDrawNothingAndDoNotCrash) {
   // A tile far too large to draw at device resolution (it is drawn smaller), zero-sized boxes with
   // objectBoundingBox units, masks and clips on nothing, a pattern that paints itself.

@@ -138,7 +138,59 @@ TEST(SvgMarker, ContextPaintsInUseAreTheUsesPaints) {
   EXPECT_FALSE(plain.fill || plain.stroke);
 }
 
-TEST(SvgMarker, MarkersInsideMarkersAreIgnored) {
+/// The first PathNode below `g`, depth first.
+const PathNode* first_path(const Group& g) {
+  for (const Node& child : g.children) {
+    if (const PathNode* p = std::get_if<PathNode>(&child.value)) return p;
+    if (const Group* sub = std::get_if<Group>(&child.value)) {
+      if (const PathNode* p = first_path(*sub)) return p;
+    }
+  }
+  return nullptr;
+}
+
+TEST(SvgMarker, ContextServersArePlacedInTheUsesSpaceAndBox) {
+  const Tree t = tree("<pattern id='p' patternUnits='userSpaceOnUse' width='4' height='4'><rect width='2' height='2'/>"
+                      "</pattern><defs><g id='g'><rect x='10' y='20' width='30' height='40' "
+                      "transform='translate(5 0) scale(2)' fill='context-fill' stroke='context-stroke'/></g></defs>"
+                      "<use href='#g' x='1' y='2' transform='rotate(30)' fill='url(#p)' stroke='green'/>");
+  const PathNode* rect = first_path(t.root);
+  ASSERT_TRUE(rect && rect->fill && rect->stroke);
+  const Paint& fill = rect->fill->paint;
+  ASSERT_EQ(fill.kind, Paint::Kind::Pattern);
+  EXPECT_FALSE(fill.from_context);
+  // The use's user space (its transform, before translate(x, y)) into the rect's: translate(1 2) translate(5 0)
+  // scale(2), inverted.
+  ASSERT_TRUE(fill.context_space);
+  expect_affine(*fill.context_space, Affine{0.5, 0, 0, 0.5, -3, -1});
+  ASSERT_TRUE(fill.context_box);
+  EXPECT_NEAR(fill.context_box->x0, 26, 1e-9);
+  EXPECT_NEAR(fill.context_box->y0, 42, 1e-9);
+  EXPECT_NEAR(fill.context_box->x1, 86, 1e-9);
+  EXPECT_NEAR(fill.context_box->y1, 122, 1e-9);
+  // A colour needs no space.
+  EXPECT_EQ(rect->stroke->paint.kind, Paint::Kind::Color);
+  EXPECT_FALSE(rect->stroke->paint.context_space);
+}
+
+TEST(SvgMarker, ContextServersArePlacedInTheMarkedShapesSpaceAndBox) {
+  const Tree t = tree("<linearGradient id='lg'><stop offset='0' stop-color='red'/><stop offset='1' stop-color='blue'/>"
+                      "</linearGradient><marker id='m' markerUnits='userSpaceOnUse' refX='1' refY='1'>"
+                      "<rect width='3' height='3' fill='context-fill'/></marker>"
+                      "<path d='M 10 20 L 50 80' fill='url(#lg)' stroke='black' marker-end='url(#m)'/>");
+  const PathNode* rect = first_path(instance(instances(t), 0));
+  ASSERT_TRUE(rect && rect->fill);
+  const Paint& fill = rect->fill->paint;
+  ASSERT_EQ(fill.kind, Paint::Kind::Gradient);
+  ASSERT_TRUE(fill.context_space && fill.context_box);
+  expect_affine(*fill.context_space, Affine::translate(-49, -79));  // the instance sits at translate(49 79)
+  EXPECT_EQ(fill.context_box->x0, 10);
+  EXPECT_EQ(fill.context_box->y0, 20);
+  EXPECT_EQ(fill.context_box->x1, 50);
+  EXPECT_EQ(fill.context_box->y1, 80);
+}
+
+TEST(SvgMarker, AMarkerIsLeftOutInsideItsOwnContent) {
   // The marker's content carries markers of its own (here the marker itself): a loop if they were expanded.
   const Tree t = tree("<marker id='m' markerUnits='userSpaceOnUse' overflow='visible'><path d='M 0 0 L 2 2' "
                       "stroke='black' marker-start='url(#m)' marker-end='url(#m)'/></marker>"
@@ -148,6 +200,45 @@ TEST(SvgMarker, MarkersInsideMarkersAreIgnored) {
   const Group& content = std::get<Group>(instance(all, 0).children.at(0).value);
   ASSERT_EQ(content.children.size(), 1u);
   EXPECT_TRUE(std::get_if<PathNode>(&content.children[0].value));  // the path alone, no marker group
+}
+
+TEST(SvgMarker, MarkersNestUntilAMarkerComesBack) {
+  // a's content has b at its end; b's content has a (being built: left out) and c; c's content has b (left out).
+  const Tree t = tree(
+      "<marker id='a' markerUnits='userSpaceOnUse'><path d='M 0 0 L 2 0' stroke='black' marker-end='url(#b)'/></marker>"
+      "<marker id='b' markerUnits='userSpaceOnUse'><path d='M 0 0 L 2 0' stroke='black' marker-start='url(#a)' "
+      "marker-end='url(#c)'/></marker>"
+      "<marker id='c' markerUnits='userSpaceOnUse'><path d='M 0 0 L 2 0' stroke='black' marker-end='url(#b)'/></marker>"
+      "<path d='M 0 0 L 9 0' stroke='black' marker-end='url(#a)'/>");
+  auto content_of = [](const Group& inst) -> const Group& { return std::get<Group>(inst.children.at(0).value); };
+  // The marker content of a marked path: its element group holds the path, then the instances.
+  auto nested = [&](const Group& content) -> const Group* {
+    const Group* element = std::get_if<Group>(&content.children.at(0).value);
+    if (!element) return nullptr;  // a bare path: no markers
+    return &std::get<Group>(element->children.at(1).value);
+  };
+  const Group& a = content_of(instance(instances(t), 0));
+  const Group* in_a = nested(a);
+  ASSERT_NE(in_a, nullptr);
+  ASSERT_EQ(in_a->children.size(), 1u);  // b at the end
+  const Group* in_b = nested(content_of(instance(*in_a, 0)));
+  ASSERT_NE(in_b, nullptr);
+  ASSERT_EQ(in_b->children.size(), 1u);  // c only: a is being built
+  const Group& c = content_of(instance(*in_b, 0));
+  EXPECT_EQ(nested(c), nullptr);  // b is being built: c's path has no markers
+}
+
+TEST(SvgMarker, AUseInsideAMarkerMayInstanceTheMarkedShape) {
+  // The marker instances the shape it marks: not a use loop (marker content is drawn apart), and the marker
+  // is left out inside itself.
+  const Tree t = tree("<marker id='m' markerUnits='userSpaceOnUse'><use href='#p'/></marker>"
+                      "<path id='p' d='M 0 0 L 9 0' stroke='black' marker-end='url(#m)'/>");
+  EXPECT_TRUE(t.warnings.empty()) << t.warnings.front();
+  const Group& all = instances(t);
+  ASSERT_EQ(all.children.size(), 1u);
+  const Group& content = std::get<Group>(instance(all, 0).children.at(0).value);
+  const Group& use = std::get<Group>(content.children.at(0).value);
+  EXPECT_TRUE(std::get_if<PathNode>(&use.children.at(0).value));  // the path, without markers
 }
 
 TEST(SvgMarker, PaintOrderPutsMarkersFirstOrBetween) {

@@ -184,6 +184,8 @@ struct XmlAdapter {
 constexpr std::string_view kSvgNamespace = "http://www.w3.org/2000/svg";
 constexpr std::size_t kMaxUseInstances = 100'000;
 constexpr int kMaxReferenceDepth = 64;
+// Markers inside markers (each a different marker: one cannot contain itself) nest at most this deep.
+constexpr std::size_t kMaxMarkerNesting = 8;
 /// SVG images inside SVG images: at most this many levels below the document (data: URLs can nest).
 constexpr int kMaxImageNesting = 4;
 /// Decoded image pixels one document may hold, its SVG images included (512 MiB of RGBA8: two images of the
@@ -1386,10 +1388,14 @@ class Builder {
   };
 
   /// The markers of a shape as one group of instances (in the shape's user space), or nothing when it has
-  /// none. Markers on shapes inside a marker are ignored, which also stops a marker from containing itself.
+  /// none. Shapes inside a marker have markers too, except a marker whose content is being built (a marker
+  /// reached again through its own content is left out there, as resvg does: no recursion).
   std::optional<Group> markers_of(const Path& path, const Style& style, std::size_t at) {
-    if (in_marker_ > 0 || in_clip_path_ > 0 || !style.visible) return std::nullopt;
+    if (in_clip_path_ > 0 || !style.visible) return std::nullopt;
     if (style.marker_start.empty() && style.marker_mid.empty() && style.marker_end.empty()) return std::nullopt;
+    // Inside a marker, which markers apply depends on the markers being built: the enclosing content cannot be
+    // shared with other shapes (it is built per shape, like content with context paints).
+    if (!marker_stack_.empty()) context_used_ = true;
     // context-fill and context-stroke in marker content are this shape's paints.
     const Paint fill = style.visible ? resolve_paint(style.fill, style.fill_opacity, style) : Paint{};
     const Paint stroke = style.stroke_style.width > 0 ? resolve_paint(style.stroke, style.stroke_opacity, style) : Paint{};
@@ -1400,6 +1406,7 @@ class Builder {
       if (!built) built = marker_content(*def, &fill, &stroke, nullptr);
       return built;
     };
+    std::optional<Rect> shape_box;  // what context paints in the content refer to (once: paths can be long)
     Group all;
     for (const detail::MarkerVertex& v : detail::marker_vertices(path)) {
       using K = detail::MarkerVertex::Kind;
@@ -1425,10 +1432,38 @@ class Builder {
       if (element_count_ > kMaxElements)
         fail(at, "too many elements (the limit is " + std::to_string(kMaxElements) + ", marker instances included)");
       instance.children.push_back(Node{std::move(content)});
+      if (def->uses_context) {
+        if (!shape_box) shape_box = path.bounds();
+        place_context_paints(instance, instance.transform, *shape_box);
+      }
       all.children.push_back(Node{std::move(instance)});
     }
     if (all.children.empty()) return std::nullopt;
     return all;
+  }
+
+  /// Places the context paints below `g` that no context element has placed yet (the innermost context element
+  /// places first) in their context element's space: `to_context` maps `g`'s children's space into it, `box` is
+  /// the context element's object bounding box there. A space that cannot be inverted paints nothing.
+  static void place_context_paints(Group& g, const Affine& to_context, const Rect& box) {
+    auto place = [&](Paint& paint, const Affine& m) {
+      if (!paint.from_context) return;
+      paint.from_context = false;
+      if (!m.invertible()) {
+        paint.kind = Paint::Kind::None;
+        return;
+      }
+      paint.context_space = m.inverse();
+      paint.context_box = box;
+    };
+    for (Node& child : g.children) {
+      if (Group* sub = std::get_if<Group>(&child.value)) {
+        place_context_paints(*sub, to_context * sub->transform, box);
+      } else if (PathNode* p = std::get_if<PathNode>(&child.value)) {
+        if (p->fill) place(p->fill->paint, to_context);
+        if (p->stroke) place(p->stroke->paint, to_context);
+      }
+    }
   }
 
   /// The path and its markers in paint order: markers first, between fill and stroke (the path split in two),
@@ -1469,6 +1504,9 @@ class Builder {
       warn("references", at, "no marker with id " + quoted(id) + ", ignored");
       return nullptr;
     }
+    // A marker whose content is being built is left out inside it (no recursion).
+    if (std::find(marker_stack_.begin(), marker_stack_.end(), node) != marker_stack_.end()) return nullptr;
+    if (marker_stack_.size() >= kMaxMarkerNesting) return nullptr;
     const auto cached = markers_.find(node.internal_object());
     if (cached != markers_.end()) return &cached->second;
     MarkerDef def;
@@ -1520,7 +1558,13 @@ class Builder {
     context_used_ = false;
     auto content = std::make_shared<Group>();
     ++in_marker_;
+    marker_stack_.push_back(def.node);
+    // Marker content is drawn apart from the shape, like a pattern tile: a `use` being instanced around the
+    // shape is no loop there (marker_stack_ stops markers from recursing).
+    std::vector<pugi::xml_node> outer_uses = std::exchange(use_stack_, {});
     children(def.node, def.style, content->children, 1);
+    use_stack_ = std::move(outer_uses);
+    marker_stack_.pop_back();
     --in_marker_;
     if (uses_context) *uses_context = context_used_;
     percent_width_ = saved_w;
@@ -1649,6 +1693,7 @@ class Builder {
     const Paint context_stroke = resolve_paint(style.stroke, style.stroke_opacity, style);
     const Paint* saved_fill = context_fill_;
     const Paint* saved_stroke = context_stroke_;
+    const bool saved_used = std::exchange(context_used_, false);
     context_fill_ = &context_fill;
     context_stroke_ = &context_stroke;
     if (local_name(target) == "symbol") {
@@ -1677,6 +1722,12 @@ class Builder {
     context_fill_ = saved_fill;
     context_stroke_ = saved_stroke;
     use_stack_.pop_back();
+    // The use element's user space is the group's before translate(x, y); its box is its content's there.
+    if (context_used_) {
+      const Affine content_to_use = Affine::translate(x, y);
+      place_context_paints(group, content_to_use, object_bounds(group, content_to_use).value_or(Rect{}));
+    }
+    context_used_ = saved_used || context_used_;
     return true;
   }
 
@@ -1933,6 +1984,12 @@ class Builder {
         paint.color = context.color;
         paint.gradient = context.gradient;
         paint.pattern = context.pattern;
+        paint.fallback = context.fallback;
+        paint.context_space = context.context_space;
+        paint.context_box = context.context_box;
+        // A server is placed in the context element's space once that element is built (place_context_paints).
+        paint.from_context = !context.context_space &&
+                             (context.kind == Paint::Kind::Gradient || context.kind == Paint::Kind::Pattern);
       } else {
         paint.kind = Paint::Kind::None;  // none, and context paints outside markers
       }
@@ -2227,6 +2284,7 @@ class Builder {
   std::unordered_map<std::string, LoadedImage> images_;
   std::unordered_map<const void*, MarkerDef> markers_;
   int in_marker_ = 0;  // > 0 while a marker's content is built
+  std::vector<pugi::xml_node> marker_stack_;  // the markers whose content is being built, outermost first
   int in_clip_path_ = 0;  // > 0 while a clipPath's content is built
   // While a marker's content is built: the paints of the shape it marks (context-fill, context-stroke).
   const Paint* context_fill_ = nullptr;

@@ -65,21 +65,6 @@ Rect transformed_rect(const Rect& r, const Affine& m) {
   return out;
 }
 
-/// The object bounding box of a group's children (fill geometry, as SVG defines it) mapped by `m`.
-std::optional<Rect> bounds_of(const Group& g, const Affine& m) {
-  std::optional<Rect> box;
-  for (const Node& child : g.children) {
-    if (const PathNode* p = std::get_if<PathNode>(&child.value)) {
-      if (!p->path.empty()) include(box, p->path.transformed(m).bounds());
-    } else if (const Group* sub = std::get_if<Group>(&child.value)) {
-      if (const auto r = bounds_of(*sub, m * sub->transform)) include(box, *r);
-    } else if (const ImageNode* image = std::get_if<ImageNode>(&child.value)) {
-      include(box, transformed_rect(image->view, m));
-    }
-  }
-  return box;
-}
-
 /// Where a group's children can paint, mapped by `m` (conservative: a stroke reaches at most half its width
 /// times the larger of the miter limit and 1.5 (square caps: 1/sqrt(2) of the width) past the path).
 std::optional<Rect> paint_bounds(const Group& g, const Affine& m) {
@@ -256,7 +241,7 @@ class Drawer {
     canvas_.set_transform(ctm);
     // The box costs a pass over every path below: only when objectBoundingBox units need it.
     const bool box_needed = uses_box(g.clip.get()) || (!clip_mode_ && uses_box(g.mask.get()));
-    const std::optional<Rect> bbox = box_needed ? bounds_of(g, Affine{}) : std::nullopt;
+    const std::optional<Rect> bbox = box_needed ? object_bounds(g, Affine{}) : std::nullopt;
     std::optional<Coverage> mask;
     std::shared_ptr<Reservation> clip_hold;
     if (g.clip) {
@@ -358,7 +343,7 @@ class Drawer {
     if (!clip.content || nesting_ >= kMaxNesting) return std::nullopt;
     const std::optional<Affine> m = clip_space(clip, bbox);
     if (!m) return std::nullopt;
-    const std::optional<Rect> content = bounds_of(*clip.content, *m);
+    const std::optional<Rect> content = object_bounds(*clip.content, *m);
     if (!content) return std::nullopt;
     const Area area = intersect(device_area(*content, ctm, canvas_.width(), canvas_.height()), limit);
     if (area.empty()) return std::nullopt;
@@ -423,7 +408,11 @@ class Drawer {
 
   /// The canvas paint for a fill or stroke of `shape` (whose box objectBoundingBox units refer to).
   std::optional<vraster::Paint> paint(const svg::Paint& p, const PathNode& shape) {
-    auto bbox = [&] { return shape.paint_box ? *shape.paint_box : shape.path.bounds(); };
+    // A context paint (SVG 2) refers to the context element's user space and box, not the shape's.
+    auto bbox = [&] {
+      return p.context_box ? *p.context_box : shape.paint_box ? *shape.paint_box : shape.path.bounds();
+    };
+    const Affine space = p.context_space.value_or(Affine{});
     // A server in objectBoundingBox units cannot apply to a box without area (a horizontal or vertical line):
     // the fallback colour paints instead when there is one (SVG 2, 13.2), else nothing.
     const bool box_units =
@@ -438,9 +427,9 @@ class Drawer {
       case svg::Paint::Kind::Color:
         return solid(p.color, p.opacity);
       case svg::Paint::Kind::Gradient:
-        return p.gradient ? gradient(*p.gradient, bbox(), p.opacity) : std::nullopt;
+        return p.gradient ? gradient(*p.gradient, bbox(), space, p.opacity) : std::nullopt;
       case svg::Paint::Kind::Pattern:
-        return p.pattern ? pattern(*p.pattern, bbox(), p.opacity) : std::nullopt;
+        return p.pattern ? pattern(*p.pattern, bbox(), space, p.opacity) : std::nullopt;
     }
     return std::nullopt;
   }
@@ -451,7 +440,9 @@ class Drawer {
     return vraster::Paint::solid(c);
   }
 
-  static std::optional<vraster::Paint> gradient(const Gradient& g, const Rect& bbox, float opacity) {
+  /// `space` maps the space the gradient is placed in (and `bbox` is given in) into the shape's user space.
+  static std::optional<vraster::Paint> gradient(const Gradient& g, const Rect& bbox, const Affine& space,
+                                                float opacity) {
     Affine to_user = g.transform;
     if (g.units == Units::ObjectBoundingBox) {
       if (!usable_box(bbox)) return std::nullopt;  // SVG: a box without area paints nothing
@@ -476,13 +467,14 @@ class Drawer {
     out.set_extend(g.spread == Spread::Reflect ? Extend::Reflect
                    : g.spread == Spread::Repeat ? Extend::Repeat
                                                 : Extend::Pad);
-    out.set_transform(to_user);
+    out.set_transform(space * to_user);
     out.set_opacity(opacity);
     return out;
   }
 
   /// A pattern: one tile drawn into an image at about device resolution, repeated by a pattern paint.
-  std::optional<vraster::Paint> pattern(const Pattern& pat, const Rect& bbox, float opacity) {
+  /// `space` as for gradients.
+  std::optional<vraster::Paint> pattern(const Pattern& pat, const Rect& bbox, const Affine& space, float opacity) {
     if (!pat.content || nesting_ >= kMaxNesting) return std::nullopt;
     const bool box_units = pat.units == Units::ObjectBoundingBox ||
                            (pat.content_units == Units::ObjectBoundingBox && !pat.view_box);
@@ -491,8 +483,11 @@ class Drawer {
     if (!usable_box(tile)) return std::nullopt;
     const double tw = tile.width(), th = tile.height();
     // Device scale along each tile axis.
-    const Affine m = canvas_.get_transform() * pat.transform;
-    double iw = std::ceil(tw * std::hypot(m.a, m.b)), ih = std::ceil(th * std::hypot(m.c, m.d));
+    const Affine pattern_space = space * pat.transform;
+    const Affine m = canvas_.get_transform() * pattern_space;
+    // Rounding noise (a context paint's space undoes the shape's transform) must not add a pixel to the tile.
+    auto whole_pixels = [](double v) { return std::ceil(v - 1e-6 * std::max(1.0, v)); };
+    double iw = whole_pixels(tw * std::hypot(m.a, m.b)), ih = whole_pixels(th * std::hypot(m.c, m.d));
     if (!std::isfinite(iw) || !std::isfinite(ih)) return std::nullopt;
     iw = std::clamp(iw, 1.0, double(kMaxImageSide));
     ih = std::clamp(ih, 1.0, double(kMaxImageSide));
@@ -527,14 +522,14 @@ class Drawer {
     }
     vraster::Paint out = vraster::Paint::pattern(std::shared_ptr<const Image>(image));
     out.set_extend(Extend::Repeat);
-    const Affine to_user = pat.transform * Affine::translate(tile.x0, tile.y0) * Affine::scale(tw / iw, th / ih);
+    const Affine to_user = pattern_space * Affine::translate(tile.x0, tile.y0) * Affine::scale(tw / iw, th / ih);
     out.set_transform(to_user);
     // A tile drawn at exactly device resolution, with no rotation or skew on the way, is copied pixel for pixel:
     // filtering would only blur its edges (a tile starting at half a pixel would smear every seam). Rotations
     // that happen to cancel still resample, as in resvg.
     const Affine ctm = canvas_.get_transform();
     const Affine to_device = ctm * to_user;
-    const bool axis_aligned = ctm.b == 0 && ctm.c == 0 && pat.transform.b == 0 && pat.transform.c == 0;
+    const bool axis_aligned = ctm.b == 0 && ctm.c == 0 && pattern_space.b == 0 && pattern_space.c == 0;
     const bool pixel_exact = axis_aligned && std::abs(to_device.a - 1) < 1e-9 && std::abs(to_device.d - 1) < 1e-9;
     out.set_filter(pixel_exact ? ImageFilter::Nearest : ImageFilter::Bilinear);
     out.set_opacity(opacity);
@@ -617,6 +612,20 @@ class Drawer {
 };
 
 }  // namespace
+
+std::optional<Rect> object_bounds(const Group& g, const Affine& m) {
+  std::optional<Rect> box;
+  for (const Node& child : g.children) {
+    if (const PathNode* p = std::get_if<PathNode>(&child.value)) {
+      if (!p->path.empty()) include(box, p->path.transformed(m).bounds());
+    } else if (const Group* sub = std::get_if<Group>(&child.value)) {
+      if (const auto r = object_bounds(*sub, m * sub->transform)) include(box, *r);
+    } else if (const ImageNode* image = std::get_if<ImageNode>(&child.value)) {
+      include(box, transformed_rect(image->view, m));
+    }
+  }
+  return box;
+}
 
 DrawStats draw_tree(const Tree& tree, Canvas& canvas, const DrawSettings& settings) {
   DrawStats stats;

@@ -76,6 +76,13 @@ struct Paint {
   /// the server cannot apply to the shape (objectBoundingBox units on a box without width or height). Unset:
   /// no fallback was given, and such a shape paints nothing.
   std::optional<Color> fallback;
+  /// `context-fill` / `context-stroke` that took a gradient or pattern: SVG 2 places the server in the context
+  /// element's user space and bounding box (the `use` element's, or the marked shape's), not the shape's.
+  /// `context_space` maps that space into the shape's user space; `context_box` is the context element's
+  /// object bounding box in it. Unset: the shape's own space and box.
+  std::optional<Affine> context_space;
+  std::optional<Rect> context_box;
+  bool from_context = false;  ///< while the tree is built: a context paint its context element has not placed yet
 };
 
 /// A fill: paint and rule.
@@ -160,6 +167,10 @@ struct Group {
 struct Node {
   std::variant<Group, PathNode, ImageNode> value;
 };
+
+/// The object bounding box of a group's children (fill geometry, as SVG defines it: hidden and unpainted shapes
+/// count, images by their viewport) mapped by `m`; nothing when the group has no geometry.
+std::optional<Rect> object_bounds(const Group& g, const Affine& m);
 
 /// A parsed document as a resolved tree.
 struct Tree {
