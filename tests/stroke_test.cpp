@@ -223,6 +223,33 @@ TEST(StrokeJoins, RoundAddsAQuarterDisc) {
   }, 32, 0.03);
 }
 
+TEST(StrokeJoins, MiterClipCutsTheMiterAtTheLimit) {
+  // A right angle (miter ratio sqrt(2)) under limit 1.2: SVG 2's miter-clip cuts the miter square to the
+  // bisector at 1.2 * width / 2 from the vertex (8, 10): the line x + y = 18 + 1.2 sqrt(2), which leaves the
+  // corner pixel [8, 9] x [10, 11] all but the triangle beyond it (legs 2 - 1.2 sqrt(2)).
+  const Path p = polyline({{2, 10}, {8, 10}, {8, 2}});
+  const auto clip = stroke_grid(p, style_of(2, LineCap::Butt, LineJoin::MiterClip, 1.2), 12, 13);
+  const auto bevel = stroke_grid(p, style_of(2, LineCap::Butt, LineJoin::Bevel), 12, 13);
+  const double leg = 2 - 1.2 * std::sqrt(2.0);
+  EXPECT_NEAR(clip.at(8, 10), 1 - leg * leg / 2, 1e-4);
+  EXPECT_NEAR(clip.total() - bevel.total(), 0.5 - leg * leg / 2, 1e-4);  // only the corner pixel differs
+  // Under a limit the miter fits, miter-clip is the miter.
+  const auto miter = stroke_grid(p, style_of(2, LineCap::Butt, LineJoin::Miter, 1.5), 12, 13);
+  const auto unclipped = stroke_grid(p, style_of(2, LineCap::Butt, LineJoin::MiterClip, 1.5), 12, 13);
+  for (int y = 0; y < 13; ++y)
+    for (int x = 0; x < 12; ++x) ASSERT_NEAR(miter.at(x, y), unclipped.at(x, y), 1e-5);
+  // A reversal has an infinite miter: clipped, it runs on limit * width / 2 = 3 past the vertex (14, 6).
+  const auto reversal = stroke_grid(polyline({{2, 6}, {14, 6}, {4, 6}}), style_of(2, LineCap::Butt, LineJoin::MiterClip, 3),
+                                    20, 12);
+  EXPECT_NEAR(reversal.at(16, 5), 1.0, 1e-4);
+  EXPECT_NEAR(reversal.at(16, 6), 1.0, 1e-4);
+  EXPECT_NEAR(reversal.at(17, 5), 0.0, 1e-4);
+  EXPECT_NEAR(reversal.total(), 2 * 15, 1e-3);  // (2..17) x (5..7)
+  LineJoin parsed = LineJoin::Miter;
+  EXPECT_TRUE(parse_line_join("miter-clip", parsed));
+  EXPECT_EQ(parsed, LineJoin::MiterClip);
+}
+
 TEST(StrokeJoins, MiterLimitFallsBackToBevelAtTheDocumentedRatio) {
   // A right angle has miter ratio sqrt(2) = 1.414...: limit 1.5 keeps the miter, 1.4 bevels.
   const Path p = polyline({{2, 10}, {8, 10}, {8, 2}});

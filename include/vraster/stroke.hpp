@@ -25,12 +25,14 @@ namespace vraster {
 
 /// Line cap (SVG stroke-linecap).
 enum class LineCap : std::uint8_t { Butt, Round, Square };
-/// Line join (SVG stroke-linejoin). Miter falls back to Bevel when the miter ratio exceeds miter_limit.
-enum class LineJoin : std::uint8_t { Miter, Round, Bevel };
+/// Line join (SVG stroke-linejoin). Miter falls back to Bevel when the miter ratio exceeds miter_limit;
+/// MiterClip (SVG 2 `miter-clip`) instead cuts the miter off square to the bisector at miter_limit * width / 2
+/// from the vertex.
+enum class LineJoin : std::uint8_t { Miter, Round, Bevel, MiterClip };
 
 /// Parses "butt" / "round" / "square"; false for anything else (out unchanged).
 bool parse_line_cap(std::string_view name, LineCap& out);
-/// Parses "miter" / "round" / "bevel"; false for anything else (out unchanged).
+/// Parses "miter" / "round" / "bevel" / "miter-clip"; false for anything else (out unchanged).
 bool parse_line_join(std::string_view name, LineJoin& out);
 
 /// How a path is stroked (SVG semantics; all lengths in user space).

@@ -217,7 +217,8 @@ class Planner {
       case Kind::Stroke: {
         Rect r;
         if (!device_box(c.path, c.to_device, r)) break;
-        const double miter = s.line.join == LineJoin::Miter ? std::max(1.0, s.line.miter_limit) : 1.0;
+        const bool miter_join = s.line.join == LineJoin::Miter || s.line.join == LineJoin::MiterClip;
+        const double miter = miter_join ? std::max(1.0, s.line.miter_limit) : 1.0;
         const double reach = s.line.width / 2 * std::max(std::sqrt(2.0), miter) * max_scale(c.to_device);
         box = touching(r, (std::isfinite(reach) ? reach : 1e300) + 1, everywhere);
         break;

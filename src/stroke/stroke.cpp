@@ -307,10 +307,21 @@ class Outliner {
       }
     } else {
       const double c = std::cos(half);
-      if (style == LineJoin::Miter && c * miter_limit_ >= 1 && c > 0) {
+      const bool miter = style == LineJoin::Miter || style == LineJoin::MiterClip;
+      if (miter && c * miter_limit_ >= 1 && c > 0) {
         Point bis = (n0 + n1) * s;
         const double bl = length(bis);
         if (bl > 0) outer.push_back(p + bis * (hw_ / (bl * c)));
+      } else if (style == LineJoin::MiterClip) {
+        // The miter cut by the line square to the bisector at miter_limit * hw from p: each outer edge runs on
+        // past its end (oa along d0, ob back along d1) until it meets that line. oa and ob lie hw * cos(half)
+        // from p along the bisector; the edges approach the line at sin(half) per unit length.
+        const double sn = std::sin(half);
+        if (sn > 0) {
+          const double t = hw_ * (miter_limit_ - c) / sn;
+          outer.push_back(oa + d0 * t);
+          outer.push_back(ob - d1 * t);
+        }
       }
       outer.push_back(ob);
     }
@@ -470,6 +481,7 @@ bool parse_line_join(std::string_view name, LineJoin& out) {
   if (name == "miter") out = LineJoin::Miter;
   else if (name == "round") out = LineJoin::Round;
   else if (name == "bevel") out = LineJoin::Bevel;
+  else if (name == "miter-clip") out = LineJoin::MiterClip;
   else return false;
   return true;
 }
@@ -617,7 +629,8 @@ Path stroke_to_path_visible(const Path& path, const StrokeStyle& style, double t
       check_dashes(path, style.dashes) == DashVerdict::Dashed ? normalize_dashes(style.dashes) : std::vector<double>{};
   // How far the outline reaches from the centre line: half the width, times the miter limit for miters, times
   // sqrt(2) for square caps; plus the tolerance.
-  const double factor = std::max(std::sqrt(2.0), style.join == LineJoin::Miter && std::isfinite(style.miter_limit)
+  const bool miter = style.join == LineJoin::Miter || style.join == LineJoin::MiterClip;
+  const double factor = std::max(std::sqrt(2.0), miter && std::isfinite(style.miter_limit)
                                                      ? style.miter_limit
                                                      : 1.0);
   Rect reachable{};

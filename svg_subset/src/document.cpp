@@ -718,7 +718,7 @@ class Builder {
     } else if (name == "stroke-linecap") {
       if (!parse_line_cap(v, s.stroke_style.cap)) bad();
     } else if (name == "stroke-linejoin") {
-      if (v == "miter-clip" || v == "arcs") {
+      if (v == "arcs") {
         warn("line joins", offset, "stroke-linejoin " + quoted(v) + " is not supported yet, using miter");
         s.stroke_style.join = LineJoin::Miter;
       } else if (!parse_line_join(v, s.stroke_style.join)) {
