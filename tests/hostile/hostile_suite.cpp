@@ -149,6 +149,20 @@ std::vector<Case> cases() {
                             "<polyline points=\"" + points + "\" stroke=\"red\" marker-mid=\"url(#m)\"/>")});
   }
   {
+    // Markers inside markers: nine markers whose 100-vertex content is marked by the next ones multiply by 100
+    // per level (up to the nesting cap of 8): the element limit stops them.
+    std::string points;
+    for (int i = 0; i < 100; ++i) points += std::to_string(i) + "," + std::to_string(i % 2) + " ";
+    std::string body;
+    for (int i = 0; i < 9; ++i) {
+      body += "<marker id=\"m" + std::to_string(i) + "\" markerUnits=\"userSpaceOnUse\"><polyline points=\"" + points +
+              "\" stroke=\"red\" marker-mid=\"url(#m" + std::to_string((i + 1) % 9) + ")\" marker-start=\"url(#m" +
+              std::to_string((i + 2) % 9) + ")\"/></marker>";
+    }
+    body += "<polyline points=\"" + points + "\" stroke=\"red\" marker-mid=\"url(#m0)\"/>";
+    out.push_back({"markers nested in markers", {"render", "IN", "-o", "OUT"}, svg(s10, body)});
+  }
+  {
     // SVG images nested through data: URLs far beyond the nesting limit.
     std::string doc = svg(s10, "<rect width=\"5\" height=\"5\"/>");
     for (int level = 0; level < 12; ++level) {
