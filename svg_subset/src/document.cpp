@@ -438,14 +438,10 @@ class Builder {
     double number = 0;
     if (scan_number(v, pos, number) != NumberScan::Ok) return false;
     const std::string_view unit = v.substr(pos);
-    // CSS absolute units at 96 px per inch; em and ex at the default 16px font.
-    static constexpr std::pair<std::string_view, double> kUnits[] = {
-        {"", 1},    {"px", 1}, {"pt", 96.0 / 72.0}, {"pc", 16}, {"mm", 96.0 / 25.4}, {"cm", 96.0 / 2.54}, {"in", 96},
-        {"em", 16}, {"ex", 8}};
-    double scale = 0;
-    for (const auto& [name, factor] : kUnits) {
-      if (iequals(unit, name)) scale = factor;
-    }
+    // CSS absolute units at the document's dpi (ParseOptions::dpi); em and ex at the default 16px font.
+    double scale = detail::absolute_unit_scale(unit, options_.dpi);
+    if (iequals(unit, "em")) scale = 16;
+    if (iequals(unit, "ex")) scale = 8;
     if (unit == "%") {
       const double w = percent_width_, h = percent_height_;
       const double reference = axis == Axis::X ? w : axis == Axis::Y ? h : std::sqrt((w * w + h * h) / 2);
@@ -726,7 +722,7 @@ class Builder {
     } else if (name == "overflow") {
       s.overflow_visible = v == "visible" || v == "auto";
     } else if (detail::is_text_property(name)) {
-      if (!detail::apply_text_property(name, v, s.text, parent.text)) bad();
+      if (!detail::apply_text_property(name, v, s.text, parent.text, options_.dpi)) bad();
     } else if (name == "filter") {
       if (v != "none" && !warned_filter_) {
         warned_filter_ = true;
@@ -1727,7 +1723,8 @@ class Builder {
     }
     try {
       // Secure mode (SVG 2, "image"): the image reads no external file, whatever its own hrefs say.
-      const ParseOptions secure;
+      ParseOptions secure;
+      secure.dpi = options_.dpi;  // the same physical units as the document around it
       Builder nested(text, name, secure, image_depth_ + 1, pixels_left_);
       auto tree = std::make_shared<Tree>(nested.run());
       if (!tree->warnings.empty())
