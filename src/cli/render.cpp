@@ -24,6 +24,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -461,11 +462,11 @@ std::vector<Job> plan_jobs(const RenderArgs& a) {
   return jobs;
 }
 
-/// What a failure prints: the message, with the input's name in front unless the message starts with it
-/// (FILE:LINE:COLUMN: ...).
+/// What a failure prints: the message, with the input's name in front unless the message names it already
+/// (FILE:LINE:COLUMN: ..., cannot read SVG file 'FILE').
 std::string failure_message(const std::string& input, const std::string& message) {
   const std::string name = printable(display_name(input), 1024);
-  if (message.compare(0, name.size() + 1, name + ":") == 0) return "vraster: " + message + "\n";
+  if (message.find(name) != std::string::npos) return "vraster: " + message + "\n";
   return "vraster: " + name + ": " + message + "\n";
 }
 
@@ -507,7 +508,11 @@ int run_jobs(const std::vector<Job>& jobs, const RenderArgs& a, const svg::Parse
     }
   };
   std::vector<std::thread> threads;
-  for (std::size_t w = 1; w < workers; ++w) threads.emplace_back(work, w);
+  try {
+    for (std::size_t w = 1; w < workers; ++w) threads.emplace_back(work, w);
+  } catch (const std::system_error&) {
+    // No more threads to be had: the workers that started (and this thread) take every file.
+  }
   work(0);
   for (std::thread& t : threads) t.join();
   return failed;

@@ -219,7 +219,7 @@ class Builder {
     tree_.root.transform = root_transform(root);
     if (style.displayed) {
       children(root, style, tree_.root.children, 1);
-      apply_group_effects(style, tree_.root);
+      apply_group_effects(style, tree_.root, element_offset(root));
     }
     finish_warnings();
     return std::move(tree_);
@@ -1149,13 +1149,14 @@ class Builder {
     }
   }
 
-  /// The group effects of a computed style: opacity, blend mode, isolation, clip path, mask.
-  void apply_group_effects(const Style& style, Group& g) {
+  /// The group effects of a computed style: opacity, blend mode, isolation, clip path, mask. `at` is where the
+  /// element starts (for warnings about its references).
+  void apply_group_effects(const Style& style, Group& g, std::size_t at) {
     g.opacity = style.opacity;
     g.blend_mode = style.blend_mode;
     g.isolate = style.isolate;
-    if (!style.clip_path.empty()) g.clip = clip_path(style.clip_path);
-    if (!style.mask.empty()) g.mask = mask(style.mask);
+    if (!style.clip_path.empty()) g.clip = clip_path(style.clip_path, at);
+    if (!style.mask.empty()) g.mask = mask(style.mask, at);
   }
 
   /// Appends what `node` draws to `out`.
@@ -1182,7 +1183,7 @@ class Builder {
     group.id = node.attribute("id").value();
     group.transform = own_transform(node);
     if (!group.transform.is_finite()) fail(at, "transform out of range");
-    apply_group_effects(style, group);
+    apply_group_effects(style, group, at);
 
     if (container) {
       if (name == "switch") {
@@ -1536,7 +1537,7 @@ class Builder {
       const Style symbol_style = computed(target, style);
       if (symbol_style.displayed) {
         Group symbol;
-        apply_group_effects(symbol_style, symbol);
+        apply_group_effects(symbol_style, symbol, element_offset(target));
         symbol.transform = own_transform(target);
         nested_viewport(target, target, symbol_style, symbol, depth + 1, length_attribute(node, "width", Axis::X),
                         length_attribute(node, "height", Axis::Y));
@@ -1546,7 +1547,7 @@ class Builder {
       Group inner;
       const Style svg_style = computed(target, style);
       if (svg_style.displayed) {
-        apply_group_effects(svg_style, inner);
+        apply_group_effects(svg_style, inner, element_offset(target));
         nested_viewport(target, target, svg_style, inner, depth + 1, length_attribute(node, "width", Axis::X),
                         length_attribute(node, "height", Axis::Y));
         if (!inner.children.empty()) group.children.push_back(Node{std::move(inner)});
@@ -2012,10 +2013,11 @@ class Builder {
     return std::find(resolving_.begin(), resolving_.end(), node) != resolving_.end();
   }
 
-  std::shared_ptr<const ClipPath> clip_path(const std::string& id) {
+  /// The clipPath `id` refers to; `at` is where the referring element starts (for the warning when there is none).
+  std::shared_ptr<const ClipPath> clip_path(const std::string& id, std::size_t at) {
     const pugi::xml_node node = by_id(id);
     if (!node || local_name(node) != "clipPath") {
-      warn("references", 0, "clip-path: no clipPath with id " + quoted(id) + ", ignored");
+      warn("references", at, "clip-path: no clipPath with id " + quoted(id) + ", ignored");
       return nullptr;
     }
     const auto cached = clips_.find(node.internal_object());
@@ -2039,16 +2041,17 @@ class Builder {
     --in_clip_path_;
     in_clip_ = was_in_clip;
     clip->content = std::move(content);
-    if (!s.clip_path.empty()) clip->clip = clip_path(s.clip_path);
+    if (!s.clip_path.empty()) clip->clip = clip_path(s.clip_path, element_offset(node));
     resolving_.pop_back();
     clips_.emplace(node.internal_object(), clip);
     return clip;
   }
 
-  std::shared_ptr<const Mask> mask(const std::string& id) {
+  /// The mask `id` refers to; `at` is where the referring element starts (for the warning when there is none).
+  std::shared_ptr<const Mask> mask(const std::string& id, std::size_t at) {
     const pugi::xml_node node = by_id(id);
     if (!node || local_name(node) != "mask") {
-      warn("references", 0, "mask: no mask with id " + quoted(id) + ", ignored");
+      warn("references", at, "mask: no mask with id " + quoted(id) + ", ignored");
       return nullptr;
     }
     const auto cached = masks_.find(node.internal_object());
@@ -2078,7 +2081,7 @@ class Builder {
     children(node, s, content->children, 1);
     in_clip_ = was_in_clip;
     m->content = std::move(content);
-    if (!s.mask.empty()) m->mask = mask(s.mask);
+    if (!s.mask.empty()) m->mask = mask(s.mask, element_offset(node));
     resolving_.pop_back();
     masks_.emplace(node.internal_object(), m);
     return m;
