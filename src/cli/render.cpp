@@ -496,7 +496,9 @@ int run_jobs(const std::vector<Job>& jobs, const RenderArgs& a, const svg::Parse
     }
     const svg::ParseOptions& options = own ? *own : first_options;
     for (std::size_t i = next++; i < jobs.size(); i = next++) {
-      std::ostringstream log;
+      // One file: its warnings as they come (before a long render). Several: each file's lines together.
+      std::ostringstream buffer;
+      std::ostream& log = jobs.size() == 1 ? std::cerr : buffer;
       try {
         render_file(jobs[i].input, jobs[i].output, a, options, log);
       } catch (...) {
@@ -504,7 +506,7 @@ int run_jobs(const std::vector<Job>& jobs, const RenderArgs& a, const svg::Parse
         log << (jobs.size() == 1 ? "vraster: " + describe_current_exception() + "\n"
                                  : failure_message(jobs[i].input, describe_current_exception()));
       }
-      report(log.str());
+      report(buffer.str());
     }
   };
   std::vector<std::thread> threads;
