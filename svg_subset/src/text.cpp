@@ -828,12 +828,28 @@ class TextBuilder {
 
   // ---- 5. emit ----
 
+  /// Where a glyph's pen space (origin on the baseline, x along the advance, in px) lands in user space.
+  static Affine placement(const Placed& p) {
+    if (p.on_path) return p.path_transform;
+    if (p.rotate == 0) return Affine::translate(p.x, p.y);
+    return Affine::translate(p.x - p.ox, p.y - p.oy) * Affine::rotate(p.rotate) * Affine::translate(p.ox, p.oy);
+  }
+
   Affine glyph_transform(const Placed& p) const {
     const double s = p.size / p.font->units_per_em();
-    const Affine scale = Affine::scale(s * p.stretch, s);
-    if (p.on_path) return p.path_transform * scale;
-    if (p.rotate == 0) return Affine::translate(p.x, p.y) * scale;
-    return Affine::translate(p.x - p.ox, p.y - p.oy) * Affine::rotate(p.rotate) * Affine::translate(p.ox, p.oy) * scale;
+    return placement(p) * Affine::scale(s * p.stretch, s);
+  }
+
+  /// A glyph's full glyph cell: its advance wide, from the font's ascender to its descender (SVG 2, 8.10: the
+  /// bounding box of text is the union of these, not of the outlines).
+  Path glyph_cell(const Placed& p) const {
+    Path cell;
+    const double advance = p.advance * p.stretch;
+    if (!(advance > 0)) return cell;
+    const text::FontMetrics fm = p.font->metrics(std::min(p.size, kMaxShapeSize));
+    const double k = p.size / std::min(p.size, kMaxShapeSize);
+    cell.add_rect(Rect{0, fm.ascender * k, advance, fm.descender * k});
+    return cell.transformed(placement(p));
   }
 
   PathNode node_for(int e, Path path) {
@@ -924,7 +940,6 @@ class TextBuilder {
     };
     auto flush = [&] {
       if (current_element >= 0 && !current.empty()) {
-        include(current);
         glyph_nodes.push_back(node_for(current_element, std::move(current)));
       }
       current = Path();
@@ -934,6 +949,7 @@ class TextBuilder {
         flush();
         current_element = p.element;
       }
+      include(glyph_cell(p));
       const Path& outline = p.font->outline_units(p.glyph);
       if (!outline.empty()) current.add_path(outline.transformed(glyph_transform(p)));
     }

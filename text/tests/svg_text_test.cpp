@@ -98,10 +98,10 @@ TEST(SvgText, GlyphPositionsFollowXAndDxLists) {
   // C: after B's advance, moved by its dx and dy.
   expect_box(paths[2]->path.bounds(), glyph_box(*font, 'C', 20, 50 + advance(*font, 'B', 20) + 5, 77));
   EXPECT_TRUE(same_color(paths[1]->fill->paint.color, Color::rgb8(255, 0, 0)));
-  // objectBoundingBox paints refer to the whole text's box.
+  // objectBoundingBox paints refer to the whole text's box: from A's pen to the end of C's advance.
   ASSERT_TRUE(paths[0]->paint_box.has_value());
-  EXPECT_EQ(paths[0]->paint_box->x0, paths[0]->path.bounds().x0);
-  EXPECT_NEAR(paths[0]->paint_box->x1, paths[2]->path.bounds().x1, 1e-9);
+  EXPECT_NEAR(paths[0]->paint_box->x0, 10, 1e-9);
+  EXPECT_NEAR(paths[0]->paint_box->x1, 50 + advance(*font, 'B', 20) + 5 + advance(*font, 'C', 20), 1e-9);
 }
 
 TEST(SvgText, RotateListTurnsEachGlyphAboutItsOrigin) {
@@ -280,6 +280,20 @@ TEST(SvgText, TextPathWrapsAroundOneClosedSubpathAndHonoursPathLength) {
   paths = text_paths(tree);
   ASSERT_EQ(paths.size(), 1u);
   expect_box(paths[0]->path.bounds(), glyph_box(*font, 'H', 20, 40, 100));
+}
+
+TEST(SvgText, TheTextBoxIsTheUnionOfFullGlyphCells) {
+  // SVG 2, 8.10: objectBoundingBox paints on text refer to the glyph cells (advance wide, ascender to
+  // descender), not to the outlines: a lowercase word without descenders still gets the descender's depth.
+  const auto font = Font::load_file(system_font(kNotoSans));
+  const svg::Tree tree = parse("<text x='10' y='80' font-family='Noto Sans' font-size='20'>vow</text>");
+  const auto paths = text_paths(tree);
+  ASSERT_EQ(paths.size(), 1u);
+  ASSERT_TRUE(paths[0]->paint_box.has_value());
+  const FontMetrics fm = font->metrics(20);
+  const double width = measure_text("vow", FontList(font), sized(20)).advance;
+  expect_box(*paths[0]->paint_box, Rect{10, 80 + fm.ascender, 10 + width, 80 + fm.descender}, 1e-6);
+  EXPECT_LT(paths[0]->path.bounds().y1, 80 + fm.descender - 1);  // the outlines stop well above it
 }
 
 TEST(SvgText, VerticalTextRunsDownWithGlyphsTurnedSideways) {
