@@ -71,7 +71,11 @@ std::optional<Rect> bounds_of(const Group& g, const Affine& m) {
   std::optional<Rect> box;
   for (const Node& child : g.children) {
     if (const PathNode* p = std::get_if<PathNode>(&child.value)) {
-      if (!p->path.empty()) include(box, p->path.transformed(m).bounds());
+      if (p->paint_box) {
+        include(box, transformed_rect(*p->paint_box, m));  // text: its glyph cells' box (SVG 2, 8.10)
+      } else if (!p->path.empty()) {
+        include(box, p->path.transformed(m).bounds());
+      }
     } else if (const Group* sub = std::get_if<Group>(&child.value)) {
       if (const auto r = bounds_of(*sub, m * sub->transform)) include(box, *r);
     } else if (const ImageNode* image = std::get_if<ImageNode>(&child.value)) {
