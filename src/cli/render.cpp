@@ -393,16 +393,16 @@ void render_tree(const svg::Tree& tree, const RenderArgs& a, const std::string& 
   std::uint64_t fallbacks = recorded.exact_fallbacks;
   const std::optional<ScenePlan> plan = a.plan ? std::optional<ScenePlan>(plan_scene(scene)) : std::nullopt;
   // Frames after the first are redrawn over the one before: with a plan, only the tiles the scene touches are
-  // cleared and drawn (draw_frame). Not under FXAA: the filter changes pixels next to the tiles too.
+  // cleared and drawn (Canvas::draw_frame). Not under FXAA: the filter changes pixels next to the tiles too.
   const bool redraw_tiles = plan && !a.aa.fxaa;
   render_frames<T>(w, h, a, output, [&](BasicImage<T>& image, bool first) {
-    if (redraw_tiles && !first) {
-      draw_frame(image, a.background, scene, *plan, &*plan);
-      return;
-    }
-    image.clear(a.background);
     Canvas canvas(image);
-    canvas.draw_scene(scene, plan ? &*plan : nullptr);
+    if (redraw_tiles) {
+      canvas.draw_frame(scene, *plan, first ? nullptr : &*plan, a.background);
+    } else {
+      image.clear(a.background);
+      canvas.draw_scene(scene, plan ? &*plan : nullptr);
+    }
     fallbacks += canvas.exact_fallbacks();
   });
   if (a.quiet) return;
