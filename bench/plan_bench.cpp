@@ -3,7 +3,7 @@
 //   vraster_plan_bench [--frames N] [--scene NAME]... [SCENE.svg...]
 //
 // A mesh scene (100,000 triangles with depth) shows the planner drawing opaque z-buffered meshes front to back.
-// The frame columns redraw the scene into the image it was last drawn into: draw_frame clears and draws only the
+// The frame columns redraw the scene into the image it was last drawn into: Canvas::draw_frame clears and draws only the
 // tiles touched (the scene touching 5% of the canvas is where that shows).
 //
 // Each scene is recorded once (Canvas over a Scene) and analysed once (plan_scene, timed on its own), then
@@ -207,9 +207,9 @@ void run(const BenchScene& s, int frames) {
     image.clear(Color::transparent());
     canvas.draw_scene(s.scene);
     const double t_frame_naive = now_ms() - t0;
-    draw_frame(image, Color::transparent(), s.scene, plan, nullptr);  // the frame before: this scene
+    canvas.draw_frame(s.scene, plan, nullptr, Color::transparent());  // the frame before: this scene
     t0 = now_ms();
-    draw_frame(image, Color::transparent(), s.scene, plan, &plan);
+    canvas.draw_frame(s.scene, plan, &plan, Color::transparent());
     const double t_frame_tiles = now_ms() - t0;
     if (f >= 0) {
       naive.push_back(t_naive);

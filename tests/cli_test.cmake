@@ -113,6 +113,49 @@ expect_status("malformed XML" 2)
 expect_stderr("malformed XML" "broken\\.svg:[0-9]+:[0-9]+: ")
 expect_no_file("malformed XML" "${WORK}/broken.png")
 
+# Every warning about something ignored names the element by FILE:LINE:COLUMN (one line each); --quiet
+# silences them, in a batch too.
+file(WRITE "${WORK}/ignored.svg"
+  "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"10\" height=\"10\">\n"
+  "  <blink/>\n"
+  "  <rect width=\"5\" height=\"5\" fill=\"hsl(nope)\" opacity=\"0.1mm\"/>\n"
+  "  <rect width=\"abc\" height=\"5\" filter=\"url(#f)\"/>\n"
+  "  <polygon points=\"0 0 5 5 9\" stroke-linecap=\"miter\"/>\n"
+  "  <path d=\"M0 0 L5 5 Q\" fill=\"url(#missing)\"/>\n"
+  "  <rect width=\"5\" height=\"5\" mask=\"url(#no-mask)\" clip-path=\"url(#no-clip)\"/>\n"
+  "</svg>\n")
+run_vraster(render ignored.svg -o ignored.png --no-system-fonts)
+expect_status("ignored values" 0)
+string(REGEX MATCHALL "[^\n]+" warning_lines "${ERR}")
+list(LENGTH warning_lines warning_count)
+if(warning_count LESS 7)
+  fail("ignored values: expected a warning for each of the 7 lines with ignored things, got ${warning_count}")
+endif()
+foreach(line IN LISTS warning_lines)
+  if(NOT line MATCHES "^ignored\\.svg:[2-7]:[0-9]+: ")
+    fail("ignored values: a warning without ignored.svg:LINE:COLUMN: '${line}'")
+  endif()
+endforeach()
+foreach(line_number 2 3 4 5 6 7)
+  if(NOT ERR MATCHES "ignored\\.svg:${line_number}:")
+    fail("ignored values: nothing reported on line ${line_number}")
+  endif()
+endforeach()
+file(MAKE_DIRECTORY "${WORK}/quiet_batch")
+run_vraster(render ignored.svg "${DATA}/bad_path.svg" -o quiet_batch/ -j 2 --quiet)
+expect_status("--quiet batch" 0)
+if(NOT ERR STREQUAL "")
+  fail("--quiet batch still printed: ${ERR}")
+endif()
+expect_png("--quiet batch" "${WORK}/quiet_batch/bad_path.png" 8 6 8)
+
+# -o - (standard output): a failure writes nothing there.
+run_vraster(render broken.svg -o -)
+expect_status("-o -, malformed XML" 2)
+if(NOT OUT STREQUAL "")
+  fail("-o -, malformed XML: something was written on standard output")
+endif()
+
 # --- missing input file ---
 run_vraster(render "${WORK}/does-not-exist.svg" -o missing.png)
 expect_status("missing input" 2)
@@ -166,6 +209,27 @@ expect_status("render --help" 0)
 if(NOT OUT MATCHES "--width")
   fail("render --help does not describe --width")
 endif()
+# --help and -? on every subcommand: its own usage on stdout, status 0 (-h stays render's --height, as in
+# rsvg-convert: see "--height" above).
+foreach(command render explain fill-rules text accuracy compare mesh shading depth demo)
+  foreach(flag --help -?)
+    run_vraster(${command} ${flag})
+    expect_status("${command} ${flag}" 0)
+    if(NOT OUT MATCHES "^usage: vraster ${command} ")
+      fail("${command} ${flag}: stdout does not start with 'usage: vraster ${command} '")
+    endif()
+  endforeach()
+endforeach()
+run_vraster(render "${DATA}/tiny.svg" -o help_not_written.png --help)
+expect_status("render IN -o OUT --help" 0)
+expect_no_file("render IN -o OUT --help" "${WORK}/help_not_written.png")
+run_vraster(--help)
+expect_status("vraster --help" 0)
+foreach(command render explain fill-rules text accuracy compare mesh shading depth demo)
+  if(NOT OUT MATCHES "\n  vraster ${command} ")
+    fail("vraster --help does not list '${command}'")
+  endif()
+endforeach()
 # compare: the conformance rule; an image against itself passes, against another size fails with status 1.
 run_vraster(compare "${WORK}/wide.png" "${WORK}/wide.png")
 expect_status("compare, same image" 0)

@@ -655,7 +655,8 @@ TEST(SceneFrames, RedrawingOnlyTheChangedTilesGivesTheFullRedraw) {
     });
     const ScenePlan plan = plan_scene(scene);
     const Image before = frames;
-    const std::vector<PixelBox> regions = draw_frame(frames, background, scene, plan, seed == 1 ? nullptr : &previous);
+    const std::vector<PixelBox> regions =
+        Canvas(frames).draw_frame(scene, plan, seed == 1 ? nullptr : &previous, background);
     Image full(200, 150);
     full.clear(background);
     {
@@ -720,5 +721,9 @@ TEST(SceneFrames, ChangedRegionsMergeTouchedTilesAndRejectOtherSizes) {
   Image image(150, 99);
   Scene scene;
   scene.width = 150, scene.height = 100;
-  EXPECT_THROW(draw_frame(image, Color::transparent(), scene, plan, nullptr), Error);
+  EXPECT_THROW(Canvas(image).draw_frame(scene, plan, nullptr, Color::transparent()), Error);
+  Image right(150, 100);
+  Canvas inside_a_layer(right);
+  inside_a_layer.begin_layer(0.5f);
+  EXPECT_THROW(inside_a_layer.draw_frame(scene, plan, nullptr, Color::transparent()), Error);
 }

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <vector>
 
 #include "vraster/composite.hpp"
 #include "vraster/geometry.hpp"
@@ -52,6 +53,7 @@ struct Shadow {
 
 struct Scene;
 struct ScenePlan;
+struct PixelBox;
 
 class Canvas {
  public:
@@ -190,6 +192,14 @@ class Canvas {
   /// clip; every call the plan culls is skipped and every change it made is applied. Without a plan, every call
   /// is replayed as recorded. The canvas state is left as it was.
   void draw_scene(const Scene& scene, const ScenePlan* plan = nullptr);
+  /// Draws `scene` with `plan` as the next frame of this canvas's image, which holds the frame drawn before:
+  /// `previous` is the plan of that frame (drawn by draw_frame with the same background), or null when it is not
+  /// known (the first frame), and then the whole image is cleared to `background`. Otherwise only
+  /// changed_regions(plan, previous) are cleared and drawn into, which gives the same pixels as clearing
+  /// everything. Returns the regions cleared (the only pixels that can differ from the frame before). Throws
+  /// vraster::Error when the scene, the plan and the canvas differ in size, while recording, or inside a layer.
+  std::vector<PixelBox> draw_frame(const Scene& scene, const ScenePlan& plan, const ScenePlan* previous,
+                                   Color background);
   /// How many fills so far went over the exact-coverage work limit and were drawn analytic instead
   /// (Rasterizer::exact_fallbacks), so that callers can warn.
   std::uint64_t exact_fallbacks() const;

@@ -1,7 +1,9 @@
 // vraster: PNG files through libpng.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "vraster/image.hpp"
 #include "vraster/files.hpp"
@@ -17,6 +19,10 @@ void write_png(const std::string& path, const Image16& image);
 /// Encodes a PNG into `file` without committing it (for several files that must all appear or none).
 void write_png(OutputFile& file, const Image& image);
 void write_png(OutputFile& file, const Image16& image);
+/// The PNG file write_png would write, in memory (8 or 16 bits), e.g. to send it down a pipe only once it is
+/// whole. Throws vraster::Error on failure.
+std::vector<std::uint8_t> png_bytes(const Image& image);
+std::vector<std::uint8_t> png_bytes(const Image16& image);
 
 /// Reads any PNG (palette, grey, with or without alpha, 8 or 16 bits) as 8-bit premultiplied RGBA.
 /// Throws vraster::Error naming the file and libpng's complaint for a missing or corrupt file.

@@ -158,17 +158,8 @@ struct ScenePlan {
 /// The tiles `plan` touches, and those `previous` touched when it is given (a plan of a scene of the same size), as
 /// rectangles of device pixels: runs of touched tiles in each tile row, merged with the run of the same extent
 /// below. These are the only pixels a frame of the scene can change, so a program that redraws frames into one
-/// image clears, redraws, encodes or uploads only them (draw_frame).
+/// image clears, redraws, encodes or uploads only them (Canvas::draw_frame).
 std::vector<PixelBox> changed_regions(const ScenePlan& plan, const ScenePlan* previous = nullptr);
-
-/// Draws `scene` with `plan` as the next frame of `target` (the scene's size). `previous` is the plan of the frame
-/// `target` holds, drawn by draw_frame with the same background; null when that is unknown (the first frame):
-/// then the whole image is cleared. Otherwise only changed_regions(plan, previous) are cleared to `background`
-/// and drawn into, which gives the same pixels as clearing everything; they are returned (for a first frame,
-/// the whole image). Throws vraster::Error when the sizes do not match.
-template <class T>
-std::vector<PixelBox> draw_frame(BasicImage<T>& target, Color background, const Scene& scene, const ScenePlan& plan,
-                                 const ScenePlan* previous);
 
 /// 2.5D ordering for objects of constant depth (window systems, cartoon cels, VLSI layers): the scene with its
 /// calls in increasing z (Canvas::set_z), calls of equal z in the order they were recorded. A layer moves as one

@@ -6,6 +6,7 @@
 // and the ones it does not need are popped with restore(), so consecutive commands under the same clips share
 // one clip mask.
 #include <algorithm>
+#include <string>
 
 #include "canvas/canvas_impl.hpp"
 #include "vraster/error.hpp"
@@ -157,6 +158,57 @@ void Canvas::draw_scene(const Scene& scene, const ScenePlan* plan) {
   }
   pop_clips(levels.back());
   restore();
+}
+
+namespace {
+
+/// Sets every pixel of `box` to `fill` (four channels).
+template <class T>
+void fill_box(BasicImage<T>& image, const PixelBox& box, const T* fill) {
+  const bool uniform = fill[0] == fill[1] && fill[1] == fill[2] && fill[2] == fill[3];
+  for (int y = box.y0; y < box.y1; ++y) {
+    T* px = image.pixel(box.x0, y);
+    const std::size_t n = static_cast<std::size_t>(box.x1 - box.x0) * 4;
+    if (uniform) {
+      std::fill_n(px, n, fill[0]);  // transparent, opaque white, ...: one store pattern
+    } else {
+      for (std::size_t i = 0; i < n; i += 4) std::copy(fill, fill + 4, px + i);
+    }
+  }
+}
+
+template <class T>
+void clear_regions(BasicImage<T>& image, const std::vector<PixelBox>& regions, Color background) {
+  BasicImage<T> one(1, 1);
+  one.clear(background);
+  for (const PixelBox& r : regions) fill_box(image, r, one.data.data());
+}
+
+}  // namespace
+
+std::vector<PixelBox> Canvas::draw_frame(const Scene& scene, const ScenePlan& plan, const ScenePlan* previous,
+                                         Color background) {
+  Impl& s = *impl_;
+  if (s.recording) throw Error("draw_frame: the canvas is recording");
+  if (!s.layers.empty()) throw Error("draw_frame: a layer is open");
+  if (scene.width != s.width || scene.height != s.height || plan.width != s.width || plan.height != s.height) {
+    throw Error("draw_frame: the canvas is " + std::to_string(s.width) + "x" + std::to_string(s.height) +
+                ", the scene " + std::to_string(scene.width) + "x" + std::to_string(scene.height) + ", the plan " +
+                std::to_string(plan.width) + "x" + std::to_string(plan.height));
+  }
+  std::vector<PixelBox> regions;
+  if (previous == nullptr) {
+    regions.push_back(PixelBox{0, 0, s.width, s.height});
+  } else {
+    regions = changed_regions(plan, previous);
+  }
+  if (s.is16()) {
+    clear_regions(*s.image16, regions, background);
+  } else {
+    clear_regions(*s.image8, regions, background);
+  }
+  draw_scene(scene, &plan);
+  return regions;
 }
 
 }  // namespace vraster

@@ -1,6 +1,8 @@
 // vraster command-line tool: shared helpers of the subcommands.
 #pragma once
 
+#include <cstdint>
+#include <iostream>
 #include <string>
 #include <string_view>
 
@@ -14,6 +16,16 @@ namespace vraster::cli {
 struct UsageError {
   std::string message;
 };
+
+/// `vraster render IN.svg... -o OUT.png|-|DIR/ [...]` and `vraster explain IN.svg [...]` (src/cli/render.cpp),
+/// with their usage texts.
+int run_render(int argc, char** argv);
+int run_explain(int argc, char** argv);
+extern const char* const kRenderUsage;
+extern const char* const kExplainUsage;
+
+/// `vraster demo [-o FILE]` (src/cli/demo.cpp).
+int run_demo(int argc, char** argv);
 
 /// `vraster fill-rules IN.svg -o SHEET.png [--winding] [--aa MODE] [--panel PX]`.
 int run_fill_rules(int argc, char** argv);
@@ -30,7 +42,7 @@ int run_depth(int argc, char** argv);
 /// Prints a warning when some exact (or non-exterior) fills of `renderer` went over the crossing budget and
 /// were drawn analytic (or non-zero) instead (see Rasterizer::kMaxExactCrossings).
 void warn_about_exact_fallbacks(Renderer& renderer);
-void warn_about_exact_fallbacks(std::uint64_t fallbacks);
+void warn_about_exact_fallbacks(std::uint64_t fallbacks, std::ostream& out = std::cerr);
 
 /// The embedded demo scene (SVG text).
 std::string_view demo_svg();

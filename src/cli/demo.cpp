@@ -1,10 +1,14 @@
 // The embedded demo: an SVG scene (fill rules, curves, arcs, transparency and fine detail in one picture) and a
 // panel under it drawn through the canvas (gradients, clips, layers, blend modes, text).
 #include <cmath>
+#include <iostream>
 #include <numbers>
+#include <string>
 
 #include "cli/cli.hpp"
+#include "svg_subset/draw.hpp"
 #include "vraster/canvas.hpp"
+#include "vraster/png.hpp"
 #if VRASTER_WITH_TEXT
 #include "vraster_text/canvas_text.hpp"
 #endif
@@ -159,6 +163,31 @@ void draw_canvas_panel(Canvas& c, double top, double width, double height) {
   label(c, "a layer at 50%", 130, 184, 16, true);
   c.end_layer();
   c.restore();
+}
+
+int run_demo(int argc, char** argv) {
+  std::string output = "vraster-demo.png";
+  for (int i = 2; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg == "-o" || arg == "--output") {
+      if (i + 1 >= argc) throw UsageError{std::string(arg) + " needs a value"};
+      output = argv[++i];
+    } else {
+      throw UsageError{"demo: unknown argument " + quoted(arg)};
+    }
+  }
+  const svg::Tree tree = svg::parse_svg_tree(demo_svg(), "<demo>");
+  const auto [width, height] = svg::tree_output_size(tree);
+  Image image(width, height + kDemoPanelHeight);
+  image.clear(Color{1, 1, 1, 1});
+  {
+    Canvas canvas(image);
+    svg::draw_tree(tree, canvas);
+    draw_canvas_panel(canvas, height, width, kDemoPanelHeight);
+  }
+  write_png(output, image);
+  std::cout << "vraster demo: wrote " << output << " (" << image.width << "x" << image.height << ")\n";
+  return 0;
 }
 
 }  // namespace vraster::cli

@@ -20,9 +20,9 @@
 namespace vraster::cli {
 
 void warn_about_exact_fallbacks(Renderer& renderer) { warn_about_exact_fallbacks(renderer.rasterizer().exact_fallbacks()); }
-void warn_about_exact_fallbacks(std::uint64_t n) {
+void warn_about_exact_fallbacks(std::uint64_t n, std::ostream& out) {
   if (n > 0) {
-    std::cerr << "vraster: warning: " << n << " fill(s) had more than " << Rasterizer::kMaxExactCrossings
+    out << "vraster: warning: " << n << " fill(s) had more than " << Rasterizer::kMaxExactCrossings
               << " edge crossings inside pixel rows (the exact-mode work limit) and were drawn with --aa analytic "
                  "(non-exterior as non-zero) instead\n";
   }

@@ -77,15 +77,6 @@ int run_compare(int argc, char** argv) {
   std::string reference, ours, diff_path;
   for (int i = 2; i < argc; ++i) {
     const std::string_view arg = argv[i];
-    if (arg == "--help") {
-      std::printf(
-          "usage: vraster compare REFERENCE.png OURS.png [--diff DIFF.png]\n"
-          "Passes (exit 0) when at most 0.1%% of the pixels are off by more than 16/255 in some premultiplied\n"
-          "channel after excusing a pixel whose value lies within the range of the other image's 3x3\n"
-          "neighbourhood (both ways), and at most 0.1%% differ by more than 96/255; exit 1 when it fails.\n"
-          "Prints: pixels, off (> 16 after the excuse), far_off (> 96), max_error (after the excuse).\n");
-      return 0;
-    }
     if (arg == "--diff") {
       if (i + 1 >= argc) throw UsageError{"--diff needs a file name"};
       diff_path = argv[++i];

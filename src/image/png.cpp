@@ -48,10 +48,25 @@ void straight_row(const BasicImage<T>& image, int y, png_byte* out) {
   }
 }
 
-// Returns false and fills `state` on a libpng error. Rows are converted one at a time into `row` (one row of
-// memory beside the image, not a second copy of it).
+// Appends encoded bytes to the std::vector<std::uint8_t> that is the io pointer.
+void write_memory(png_structp png, png_bytep data, png_size_t length) {
+  auto* out = static_cast<std::vector<std::uint8_t>*>(png_get_io_ptr(png));
+  bool stored = true;
+  try {
+    out->insert(out->end(), data, data + length);
+  } catch (...) {
+    stored = false;
+  }
+  if (!stored) png_error(png, "out of memory");  // no C++ object alive here: the longjmp is safe
+}
+
+void flush_memory(png_structp) {}
+
+// Writes to `file`, or else appends to `memory`. Returns false and fills `state` on a libpng error. Rows are
+// converted one at a time into `row` (one row of memory beside the image, not a second copy of it).
 template <class T>
-bool write_rows(FILE* file, const BasicImage<T>& image, png_byte* row, ErrorState& state) {
+bool write_rows(FILE* file, std::vector<std::uint8_t>* memory, const BasicImage<T>& image, png_byte* row,
+                ErrorState& state) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &state, on_png_error, on_png_warning);
   if (!png) return false;
   png_infop info = png_create_info_struct(png);
@@ -59,7 +74,11 @@ bool write_rows(FILE* file, const BasicImage<T>& image, png_byte* row, ErrorStat
     png_destroy_write_struct(&png, &info);
     return false;
   }
-  png_init_io(png, file);
+  if (file) {
+    png_init_io(png, file);
+  } else {
+    png_set_write_fn(png, memory, write_memory, flush_memory);
+  }
   png_set_IHDR(png, info, static_cast<png_uint_32>(image.width), static_cast<png_uint_32>(image.height),
                8 * static_cast<int>(sizeof(T)), PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
@@ -80,11 +99,20 @@ template <class T>
 void encode_png(OutputFile& file, const BasicImage<T>& image) {
   std::vector<png_byte> row(static_cast<std::size_t>(image.width) * 4 * sizeof(T));
   ErrorState state;
-  if (!write_rows(file.stream(), image, row.data(), state)) {
+  if (!write_rows(file.stream(), nullptr, image, row.data(), state)) {
     // libpng says only "Write Error" when fwrite fails; errno says why (no space, file too large).
     const std::string reason = std::ferror(file.stream()) ? std::strerror(errno) : state.message;
     throw Error("cannot write " + quoted(file.path(), 1024) + ": " + reason);
   }
+}
+
+template <class T>
+std::vector<std::uint8_t> encode_png_in_memory(const BasicImage<T>& image) {
+  std::vector<png_byte> row(static_cast<std::size_t>(image.width) * 4 * sizeof(T));
+  std::vector<std::uint8_t> bytes;
+  ErrorState state;
+  if (!write_rows(nullptr, &bytes, image, row.data(), state)) throw Error(std::string("cannot encode a PNG: ") + state.message);
+  return bytes;
 }
 
 template <class T>
@@ -195,6 +223,8 @@ BasicImage<T> read_png_any(const std::string& path) {
 void write_png(const std::string& path, const Image& image) { write_png_any(path, image); }
 void write_png(OutputFile& file, const Image& image) { encode_png(file, image); }
 void write_png(OutputFile& file, const Image16& image) { encode_png(file, image); }
+std::vector<std::uint8_t> png_bytes(const Image& image) { return encode_png_in_memory(image); }
+std::vector<std::uint8_t> png_bytes(const Image16& image) { return encode_png_in_memory(image); }
 void write_png(const std::string& path, const Image16& image) { write_png_any(path, image); }
 Image read_png(const std::string& path) { return read_png_any<std::uint8_t>(path); }
 Image16 read_png16(const std::string& path) { return read_png_any<std::uint16_t>(path); }

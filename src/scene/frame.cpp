@@ -1,4 +1,5 @@
-// Frames drawn one over another: only the tiles a frame or the one before it touches are cleared and redrawn.
+// Frames drawn one over another: only the tiles a frame or the one before it touches are cleared and redrawn
+// (Canvas::draw_frame, in src/canvas/record.cpp, uses the regions found here).
 //
 // Why it is exact: after clearing to the background and drawing the scene, a pixel outside every tile the plan
 // touches still holds the background (no kept call can change it). So if the image held the previous frame, drawn
@@ -49,37 +50,5 @@ std::vector<PixelBox> changed_regions(const ScenePlan& plan, const ScenePlan* pr
   }
   return out;
 }
-
-template <class T>
-std::vector<PixelBox> draw_frame(BasicImage<T>& target, Color background, const Scene& scene, const ScenePlan& plan,
-                                 const ScenePlan* previous) {
-  if (target.width != scene.width || target.height != scene.height || plan.width != scene.width ||
-      plan.height != scene.height) {
-    throw Error("draw_frame: the image is " + std::to_string(target.width) + "x" + std::to_string(target.height) +
-                ", the scene " + std::to_string(scene.width) + "x" + std::to_string(scene.height) + ", the plan " +
-                std::to_string(plan.width) + "x" + std::to_string(plan.height));
-  }
-  std::vector<PixelBox> regions;
-  if (previous == nullptr) {
-    target.clear(background);
-    regions.push_back(PixelBox{0, 0, target.width, target.height});
-  } else {
-    regions = changed_regions(plan, previous);
-    BasicImage<T> fill(1, 1);
-    fill.clear(background);
-    for (const PixelBox& r : regions) {
-      for (int y = r.y0; y < r.y1; ++y) {
-        T* px = target.pixel(r.x0, y);
-        for (int x = r.x0; x < r.x1; ++x, px += 4) std::copy(fill.data.begin(), fill.data.end(), px);
-      }
-    }
-  }
-  Canvas canvas(target);
-  canvas.draw_scene(scene, &plan);
-  return regions;
-}
-
-template std::vector<PixelBox> draw_frame(Image&, Color, const Scene&, const ScenePlan&, const ScenePlan*);
-template std::vector<PixelBox> draw_frame(Image16&, Color, const Scene&, const ScenePlan&, const ScenePlan*);
 
 }  // namespace vraster

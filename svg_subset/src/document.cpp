@@ -236,7 +236,7 @@ class Builder {
     tree_.background = style.background;
     if (style.displayed) {
       children(root, style, tree_.root.children, 1);
-      apply_group_effects(style, tree_.root);
+      apply_group_effects(style, tree_.root, element_offset(root));
     }
     finish_warnings();
     return std::move(tree_);
@@ -481,14 +481,9 @@ class Builder {
     double number = 0;
     if (scan_number(v, pos, number) != NumberScan::Ok) return false;
     const std::string_view unit = v.substr(pos);
-    // CSS absolute units at 96 px per inch; em is the font size of the element the length is on, ex half of it
-    // (the x-height of a font is not known here; half an em is CSS's fallback).
-    static constexpr std::pair<std::string_view, double> kUnits[] = {
-        {"", 1}, {"px", 1}, {"pt", 96.0 / 72.0}, {"pc", 16}, {"mm", 96.0 / 25.4}, {"cm", 96.0 / 2.54}, {"in", 96}};
-    double scale = 0;
-    for (const auto& [name, factor] : kUnits) {
-      if (iequals(unit, name)) scale = factor;
-    }
+    // CSS absolute units at the document's dpi (ParseOptions::dpi); em is the font size of the element the length
+    // is on, ex half of it (the x-height of a font is not known here; half an em is CSS's fallback).
+    double scale = detail::absolute_unit_scale(unit, options_.dpi);
     if (iequals(unit, "em")) scale = font_size_;
     if (iequals(unit, "ex")) scale = font_size_ / 2;
     if (unit == "%") {
@@ -803,7 +798,7 @@ class Builder {
     } else if (name == "overflow") {
       s.overflow_visible = v == "visible" || v == "auto";
     } else if (detail::is_text_property(name)) {
-      if (!detail::apply_text_property(name, v, s.text, parent.text)) bad();
+      if (!detail::apply_text_property(name, v, s.text, parent.text, options_.dpi)) bad();
     } else if (name == "filter") {
       if (v != "none" && !warned_filter_) {
         warned_filter_ = true;
@@ -1245,13 +1240,14 @@ class Builder {
     }
   }
 
-  /// The group effects of a computed style: opacity, blend mode, isolation, clip path, mask.
-  void apply_group_effects(const Style& style, Group& g) {
+  /// The group effects of a computed style: opacity, blend mode, isolation, clip path, mask. `at` is where the
+  /// element starts (for warnings about its references).
+  void apply_group_effects(const Style& style, Group& g, std::size_t at) {
     g.opacity = style.opacity;
     g.blend_mode = style.blend_mode;
     g.isolate = style.isolate;
-    if (!style.clip_path.empty()) g.clip = clip_path(style.clip_path);
-    if (!style.mask.empty()) g.mask = mask(style.mask);
+    if (!style.clip_path.empty()) g.clip = clip_path(style.clip_path, at);
+    if (!style.mask.empty()) g.mask = mask(style.mask, at);
   }
 
   /// Sets the font size that em and ex lengths refer to for as long as it lives.
@@ -1292,7 +1288,7 @@ class Builder {
     group.id = node.attribute("id").value();
     group.transform = own_transform(node, &style);
     if (!group.transform.is_finite()) fail(at, "transform out of range");
-    apply_group_effects(style, group);
+    apply_group_effects(style, group, at);
 
     if (container) {
       if (name == "switch") {
@@ -1701,7 +1697,7 @@ class Builder {
       const Style symbol_style = computed(target, style);
       if (symbol_style.displayed) {
         Group symbol;
-        apply_group_effects(symbol_style, symbol);
+        apply_group_effects(symbol_style, symbol, element_offset(target));
         symbol.transform = own_transform(target, &symbol_style);
         nested_viewport(target, target, symbol_style, symbol, depth + 1, length_attribute(node, "width", Axis::X),
                         length_attribute(node, "height", Axis::Y));
@@ -1711,7 +1707,7 @@ class Builder {
       Group inner;
       const Style svg_style = computed(target, style);
       if (svg_style.displayed) {
-        apply_group_effects(svg_style, inner);
+        apply_group_effects(svg_style, inner, element_offset(target));
         nested_viewport(target, target, svg_style, inner, depth + 1, length_attribute(node, "width", Axis::X),
                         length_attribute(node, "height", Axis::Y));
         if (!inner.children.empty()) group.children.push_back(Node{std::move(inner)});
@@ -1894,7 +1890,8 @@ class Builder {
     }
     try {
       // Secure mode (SVG 2, "image"): the image reads no external file, whatever its own hrefs say.
-      const ParseOptions secure;
+      ParseOptions secure;
+      secure.dpi = options_.dpi;  // the same physical units as the document around it
       Builder nested(text, name, secure, image_depth_ + 1, pixels_left_);
       auto tree = std::make_shared<Tree>(nested.run());
       if (!tree->warnings.empty())
@@ -2202,10 +2199,11 @@ class Builder {
     return std::find(resolving_.begin(), resolving_.end(), node) != resolving_.end();
   }
 
-  std::shared_ptr<const ClipPath> clip_path(const std::string& id) {
+  /// The clipPath `id` refers to; `at` is where the referring element starts (for the warning when there is none).
+  std::shared_ptr<const ClipPath> clip_path(const std::string& id, std::size_t at) {
     const pugi::xml_node node = by_id(id);
     if (!node || local_name(node) != "clipPath") {
-      warn("references", 0, "clip-path: no clipPath with id " + quoted(id) + ", ignored");
+      warn("references", at, "clip-path: no clipPath with id " + quoted(id) + ", ignored");
       return nullptr;
     }
     const auto cached = clips_.find(node.internal_object());
@@ -2229,16 +2227,17 @@ class Builder {
     --in_clip_path_;
     in_clip_ = was_in_clip;
     clip->content = std::move(content);
-    if (!s.clip_path.empty()) clip->clip = clip_path(s.clip_path);
+    if (!s.clip_path.empty()) clip->clip = clip_path(s.clip_path, element_offset(node));
     resolving_.pop_back();
     clips_.emplace(node.internal_object(), clip);
     return clip;
   }
 
-  std::shared_ptr<const Mask> mask(const std::string& id) {
+  /// The mask `id` refers to; `at` is where the referring element starts (for the warning when there is none).
+  std::shared_ptr<const Mask> mask(const std::string& id, std::size_t at) {
     const pugi::xml_node node = by_id(id);
     if (!node || local_name(node) != "mask") {
-      warn("references", 0, "mask: no mask with id " + quoted(id) + ", ignored");
+      warn("references", at, "mask: no mask with id " + quoted(id) + ", ignored");
       return nullptr;
     }
     const auto cached = masks_.find(node.internal_object());
@@ -2269,7 +2268,7 @@ class Builder {
     children(node, s, content->children, 1);
     in_clip_ = was_in_clip;
     m->content = std::move(content);
-    if (!s.mask.empty()) m->mask = mask(s.mask);
+    if (!s.mask.empty()) m->mask = mask(s.mask, element_offset(node));
     resolving_.pop_back();
     masks_.emplace(node.internal_object(), m);
     return m;

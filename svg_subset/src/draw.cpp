@@ -13,6 +13,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -617,7 +618,11 @@ std::optional<Rect> object_bounds(const Group& g, const Affine& m) {
   std::optional<Rect> box;
   for (const Node& child : g.children) {
     if (const PathNode* p = std::get_if<PathNode>(&child.value)) {
-      if (!p->path.empty()) include(box, p->path.transformed(m).bounds());
+      if (p->paint_box) {
+        include(box, transformed_rect(*p->paint_box, m));  // text: its glyph cells' box (SVG 2, 8.10)
+      } else if (!p->path.empty()) {
+        include(box, p->path.transformed(m).bounds());
+      }
     } else if (const Group* sub = std::get_if<Group>(&child.value)) {
       if (const auto r = object_bounds(*sub, m * sub->transform)) include(box, *r);
     } else if (const ImageNode* image = std::get_if<ImageNode>(&child.value)) {
@@ -644,14 +649,84 @@ DrawStats draw_tree(const Tree& tree, Canvas& canvas, const DrawSettings& settin
   return stats;
 }
 
-std::pair<int, int> tree_output_size(const Tree& tree, int width, int height) {
+std::pair<int, int> tree_output_size(const Tree& tree, int width, int height, double zoom) {
   Document sizes;
   sizes.intrinsic_width = tree.width;
   sizes.intrinsic_height = tree.height;
   // Fractional sizes round up so the drawing is not cut off (as to_document does).
   sizes.width = static_cast<int>(std::ceil(tree.width - 1e-9));
   sizes.height = static_cast<int>(std::ceil(tree.height - 1e-9));
-  return output_size(sizes, width, height);
+  return output_size(sizes, width, height, zoom);
+}
+
+namespace {
+
+/// Where `node` paints, mapped by `m` (its parent's user space to the viewport), added to `box`: fill geometry and
+/// the exact stroke outline (resvg's stroke bounding box), images by their viewport.
+void include_painted(std::optional<Rect>& box, const Node& node, const Affine& m) {
+  if (const PathNode* p = std::get_if<PathNode>(&node.value)) {
+    if (p->path.empty()) return;
+    include(box, p->path.transformed(m).bounds());
+    if (!p->stroke) return;
+    try {
+      const Path outline = stroke_to_path(p->path, p->stroke->style, user_tolerance(m, 0.05));
+      if (!outline.empty()) include(box, outline.transformed(m).bounds());
+    } catch (const Error&) {  // an outline past the point limit: the conservative reach instead
+      Group alone;
+      alone.children.push_back(node);
+      if (const auto r = paint_bounds(alone, m)) include(box, *r);
+    }
+  } else if (const Group* g = std::get_if<Group>(&node.value)) {
+    for (const Node& child : g->children) include_painted(box, child, m * g->transform);
+  } else if (const ImageNode* image = std::get_if<ImageNode>(&node.value)) {
+    include(box, transformed_rect(image->clip, m));
+  }
+}
+
+/// The first node with `id` below `g` in document order (depth first); `m` is updated to the transform from
+/// that node's parent's user space to the viewport.
+const Node* find_node(const Group& g, std::string_view id, Affine& m) {
+  for (const Node& child : g.children) {
+    if (std::visit([](const auto& n) -> const std::string& { return n.id; }, child.value) == id) return &child;
+    const Group* sub = std::get_if<Group>(&child.value);
+    if (!sub) continue;
+    Affine inner = m * sub->transform;
+    if (const Node* found = find_node(*sub, id, inner)) {
+      m = inner;
+      return found;
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::optional<Tree> element_tree(const Tree& tree, std::string_view id) {
+  if (id.empty()) return std::nullopt;
+  Node node;
+  Affine m;  // the node's parent's user space to the viewport
+  if (tree.root.id == id) {
+    node.value = tree.root;
+  } else {
+    m = tree.root.transform;
+    const Node* found = find_node(tree.root, id, m);
+    if (!found) return std::nullopt;
+    node = *found;
+  }
+  std::optional<Rect> box;
+  include_painted(box, node, m);
+  if (!box || !usable_box(*box)) {
+    throw Error("the element with id " + vraster::quoted(id) + " draws nothing: its bounding box is empty");
+  }
+  Tree out;
+  out.file = tree.file;
+  out.warnings = tree.warnings;
+  // Whole px, so that the element is drawn 1:1 at its own size (the box grows right and down).
+  out.width = std::max(1.0, std::ceil(box->width() - 1e-9));
+  out.height = std::max(1.0, std::ceil(box->height() - 1e-9));
+  out.root.transform = Affine::translate(-box->x0, -box->y0) * m;
+  out.root.children.push_back(std::move(node));
+  return out;
 }
 
 template <class T>

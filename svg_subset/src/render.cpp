@@ -52,7 +52,16 @@ void draw_hairline(BasicImage<T>& image, const DrawItem& item, HairlineMode mode
 
 }  // namespace
 
-std::pair<int, int> output_size(const Document& doc, int width, int height) {
+std::pair<int, int> output_size(const Document& doc, int width, int height, double zoom) {
+  if (zoom > 0) {
+    // Rounded up so the drawing is not cut off (1e-9: 10 x 0.3 is 3.0000000000000004, which is 3 pixels).
+    const double w = std::max(1.0, std::ceil(doc.intrinsic_width * zoom - 1e-9));
+    const double h = std::max(1.0, std::ceil(doc.intrinsic_height * zoom - 1e-9));
+    if ((width <= 0 || w <= width) && (height <= 0 || h <= height)) {
+      check_image_size(w, h);  // before the cast: a large zoom can be out of int's range
+      return {static_cast<int>(w), static_cast<int>(h)};
+    }
+  }
   if (width > 0 && height > 0) return {width, height};
   if (width <= 0 && height <= 0) return {doc.width, doc.height};
   // Single precision, as resvg computes it (the reference images were made that way).

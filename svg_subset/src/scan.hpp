@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <string_view>
 #include <system_error>
+#include <utility>
 
 namespace vraster::svg::detail {
 
@@ -117,6 +118,19 @@ inline NumberScan scan_number(std::string_view s, std::size_t& pos, double& valu
   value = parsed;
   pos = i;
   return NumberScan::Ok;
+}
+
+/// Pixels per unit of a CSS absolute length unit at `dpi` pixels per inch (CSS and the default: 96): px (and no
+/// unit) is always 1, in is `dpi`, cm, mm, pt and pc follow from the inch (ASCII case-insensitive). 0 for any
+/// other unit.
+inline double absolute_unit_scale(std::string_view unit, double dpi) {
+  static constexpr std::pair<std::string_view, double> kPerInch[] = {
+      {"in", 1}, {"cm", 2.54}, {"mm", 25.4}, {"pt", 72}, {"pc", 6}};
+  if (unit.empty() || iequals(unit, "px")) return 1;
+  for (const auto& [name, per_inch] : kPerInch) {
+    if (iequals(unit, name)) return dpi / per_inch;
+  }
+  return 0;
 }
 
 }  // namespace vraster::svg::detail

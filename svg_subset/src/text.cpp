@@ -9,16 +9,18 @@
 //   5. emit:      one PathNode per run of glyphs of one element (its fill and stroke), decorations as rectangles
 //                 (underline and overline below the glyphs, line-through above), paint_box = the text's box
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cwctype>
 #include <map>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <numbers>
 
 #include "scan.hpp"
 #include "text.hpp"
 #include "vraster/error.hpp"
-#include "vraster/flatten.hpp"
 #include "vraster_text/font_db.hpp"
 #include "vraster_text/layout.hpp"
 
@@ -52,25 +54,88 @@ struct Lists {
   std::vector<double> x, y, dx, dy, rotate;
 };
 
-/// A textPath's geometry flattened, with cumulative lengths for positions along it.
+/// A textPath's geometry: its segments as cubics (lines and quadratics raised exactly), measured by Gauss-Legendre
+/// quadrature, so positions and tangents along it are those of the curve itself (a polyline's chords would turn
+/// glyphs by up to half a chord's bend). Moves start a new piece without counting their jump; closes are lines.
 struct TextPath {
-  std::vector<Point> points;
-  std::vector<double> length;  // length[i]: distance from points[0] to points[i]
+  static constexpr int kSteps = 16;  // quadrature intervals per segment (lengths tabulated at their ends)
+  struct Segment {
+    Point p[4];
+    double start = 0;                     // distance from the path's start
+    std::array<double, kSteps + 1> table;  // table[i]: length from t = 0 to t = i / kSteps
+    double length() const { return table[kSteps]; }
+  };
+  std::vector<Segment> segments;
   double start_offset = 0;
-  double total() const { return length.empty() ? 0 : length.back(); }
+  bool closed_loop = false;  // one subpath, closed: text wraps around it
+
+  double total() const { return segments.empty() ? 0 : segments.back().start + segments.back().length(); }
+  Point end_point() const { return segments.empty() ? Point{} : segments.back().p[3]; }
+
+  static Point eval(const Segment& s, double t) {
+    const double u = 1 - t;
+    return s.p[0] * (u * u * u) + s.p[1] * (3 * u * u * t) + s.p[2] * (3 * u * t * t) + s.p[3] * (t * t * t);
+  }
+  static Point derivative(const Segment& s, double t) {
+    const double u = 1 - t;
+    return (s.p[1] - s.p[0]) * (3 * u * u) + (s.p[2] - s.p[1]) * (6 * u * t) + (s.p[3] - s.p[2]) * (3 * t * t);
+  }
+  static double speed(const Segment& s, double t) {
+    const Point d = derivative(s, t);
+    return std::hypot(d.x, d.y);
+  }
+  /// Length of the segment between parameters a and b (8-point Gauss-Legendre).
+  static double length_between(const Segment& s, double a, double b) {
+    static constexpr double kX[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+    static constexpr double kW[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+    const double mid = (a + b) / 2, half = (b - a) / 2;
+    double sum = 0;
+    for (int i = 0; i < 4; ++i) sum += kW[i] * (speed(s, mid - half * kX[i]) + speed(s, mid + half * kX[i]));
+    return sum * half;
+  }
+
+  /// Appends a cubic segment (zero-length ones are left out: they have no direction).
+  void add(Point p0, Point p1, Point p2, Point p3) {
+    Segment s{{p0, p1, p2, p3}, total(), {}};
+    s.table[0] = 0;
+    for (int i = 0; i < kSteps; ++i)
+      s.table[i + 1] = s.table[i] + length_between(s, double(i) / kSteps, double(i + 1) / kSteps);
+    if (s.length() > 0) segments.push_back(s);
+  }
+  void add_line(Point a, Point b) { add(a, a + (b - a) * (1.0 / 3), a + (b - a) * (2.0 / 3), b); }
+
+  /// The same path run backwards (side="right").
+  void reverse() {
+    std::vector<Segment> old = std::move(segments);
+    segments.clear();
+    for (auto it = old.rbegin(); it != old.rend(); ++it) add(it->p[3], it->p[2], it->p[1], it->p[0]);
+  }
+
   /// Point and tangent angle (radians) at distance d (0 <= d <= total()).
   std::pair<Point, double> at(double d) const {
-    const auto it = std::upper_bound(length.begin(), length.end(), d);
-    std::size_t i = it == length.begin() ? 0 : static_cast<std::size_t>(it - length.begin()) - 1;
-    if (i + 1 >= points.size()) i = points.size() - 2;
-    // Skip zero-length segments for the tangent.
-    std::size_t j = i;
-    while (j + 1 < points.size() - 1 && length[j + 1] == length[j]) ++j;
-    const Point a = points[i], b = points[i + 1];
-    const double seg = length[i + 1] - length[i];
-    const double t = seg > 0 ? std::clamp((d - length[i]) / seg, 0.0, 1.0) : 0;
-    const Point ta = points[j], tb = points[j + 1];
-    return {Point{a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t}, std::atan2(tb.y - ta.y, tb.x - ta.x)};
+    auto it = std::upper_bound(segments.begin(), segments.end(), d,
+                               [](double v, const Segment& s) { return v < s.start; });
+    const Segment& s = it == segments.begin() ? segments.front() : *std::prev(it);
+    const double target = std::clamp(d - s.start, 0.0, s.length());
+    const int i = static_cast<int>(std::upper_bound(s.table.begin(), s.table.end() - 1, target) - s.table.begin()) - 1;
+    // The parameter whose length from the table entry is `target`: Newton's method kept inside the interval.
+    double lo = double(i) / kSteps, hi = double(i + 1) / kSteps;
+    const double base = s.table[static_cast<std::size_t>(i)];
+    const double span = s.table[static_cast<std::size_t>(i) + 1] - base;
+    double t = span > 0 ? lo + (hi - lo) * (target - base) / span : lo;
+    for (int k = 0; k < 50; ++k) {
+      const double f = base + length_between(s, double(i) / kSteps, t) - target;
+      if (std::abs(f) < 1e-10) break;
+      (f > 0 ? hi : lo) = t;
+      const double v = speed(s, t);
+      const double next = v > 0 ? t - f / v : lo;
+      t = next > lo && next < hi ? next : (lo + hi) / 2;
+    }
+    Point tangent = derivative(s, t);
+    if (!(std::hypot(tangent.x, tangent.y) > 1e-9 * s.length())) {  // a cusp or a control point on an end
+      tangent = eval(s, std::min(t + 1e-4, 1.0)) - eval(s, std::max(t - 1e-4, 0.0));
+    }
+    return {eval(s, t), std::atan2(tangent.y, tangent.x)};
   }
 };
 
@@ -277,40 +342,33 @@ class TextBuilder {
   /// Reads a textPath's path; -1 when it has none (its content is not drawn).
   int text_path(pugi::xml_node node) {
     Path path;
-    if (const pugi::xml_node target = host_.href_target(node)) path = host_.shape_of(target);
+    const pugi::xml_node target = host_.href_target(node);
+    if (target) path = host_.shape_of(target);
     if (path.empty()) return -1;
     TextPath tp;
-    Polylines lines;
-    FlattenOptions options;
-    options.tolerance = 0.01;
-    try {
-      flatten(path, Affine{}, options, lines);
-    } catch (const Error&) {
-      return -1;
-    }
     // The path's contours one after another (a move starts a new piece; its jump is not counted).
-    for (std::size_t k = 0; k < lines.contour_count(); ++k) {
-      const auto pts = lines.contour(k);
-      for (std::size_t i = 0; i < pts.size(); ++i) {
-        const double d = tp.points.empty() ? 0
-                         : i == 0          ? tp.length.back()
-                                           : tp.length.back() + std::hypot(pts[i].x - tp.points.back().x,
-                                                                           pts[i].y - tp.points.back().y);
-        tp.points.push_back(pts[i]);
-        tp.length.push_back(d);
-      }
-      if (lines.closed[k] && pts.size() > 1) {
-        tp.length.push_back(tp.length.back() + std::hypot(pts[0].x - pts.back().x, pts[0].y - pts.back().y));
-        tp.points.push_back(pts[0]);
+    const auto points = path.points();
+    std::size_t k = 0, contours = 0;
+    Point current{}, contour_start{};
+    for (const Verb v : path.verbs()) {
+      contours += v == Verb::Move;
+      switch (v) {
+        case Verb::Move: current = contour_start = points[k++]; break;
+        case Verb::Line: tp.add_line(current, points[k]); current = points[k++]; break;
+        case Verb::Quad: {
+          const Point c = points[k], p = points[k + 1];
+          tp.add(current, current + (c - current) * (2.0 / 3), p + (c - p) * (2.0 / 3), p);
+          current = p;
+          k += 2;
+          break;
+        }
+        case Verb::Cubic: tp.add(current, points[k], points[k + 1], points[k + 2]); current = points[k + 2]; k += 3; break;
+        case Verb::Close: tp.add_line(current, contour_start); current = contour_start; break;
       }
     }
-    if (tp.points.size() < 2 || !(tp.total() > 0)) return -1;
-    if (const pugi::xml_attribute side = node.attribute("side"); side && std::string_view(side.value()) == "right") {
-      std::reverse(tp.points.begin(), tp.points.end());
-      const double total = tp.total();
-      std::reverse(tp.length.begin(), tp.length.end());
-      for (double& l : tp.length) l = total - l;
-    }
+    if (!(tp.total() > 0) || !std::isfinite(tp.total())) return -1;
+    tp.closed_loop = contours == 1 && path.verbs().back() == Verb::Close;
+    if (const pugi::xml_attribute side = node.attribute("side"); side && std::string_view(side.value()) == "right") tp.reverse();
     if (const pugi::xml_attribute offset = node.attribute("startOffset")) {
       const std::string_view v = trim(offset.value());
       double d = 0;
@@ -318,7 +376,12 @@ class TextBuilder {
         std::size_t p = 0;
         if (scan_number(v, p, d) == NumberScan::Ok && p + 1 == v.size()) tp.start_offset = d / 100 * tp.total();
       } else if (host_.length(v, 0, d)) {
-        tp.start_offset = d;
+        // A length counts in the author's units when the path declares its length (pathLength).
+        double declared = 0;
+        std::size_t p = 0;
+        const std::string_view declared_text = trim(target.attribute("pathLength").value());
+        const bool has_declared = scan_number(declared_text, p, declared) == NumberScan::Ok && p == declared_text.size();
+        tp.start_offset = has_declared && declared > 0 && std::isfinite(declared) ? d * tp.total() / declared : d;
       }
     }
     paths_.push_back(std::move(tp));
@@ -485,7 +548,11 @@ class TextBuilder {
   void layout_chunk(std::uint32_t begin, std::uint32_t end, int chunk, Point& pen) {
     const Char& first = chars_[begin];
     const int path = element(first.element).path;
-    if (path >= 0 && (begin == 0 || element(chars_[begin - 1].element).path != path)) pen = Point{0, 0};
+    const int previous_path = begin == 0 ? -1 : element(chars_[begin - 1].element).path;
+    // On a path the pen is a distance along it (x) and a shift across it (y), from 0 at the path's start; text
+    // after a textPath goes on from the end point of its path (SVG 2, 11.8.3 "after path").
+    if (path >= 0 && previous_path != path) pen = Point{0, 0};
+    if (path < 0 && previous_path >= 0) pen = paths_[static_cast<std::size_t>(previous_path)].end_point();
     if (first.x) pen.x = *first.x;
     if (first.y && path < 0) pen.y = *first.y;  // on a path, absolute y means nothing (SVG 1.1, 10.13.2)
     // Runs of one shaping style.
@@ -536,8 +603,7 @@ class TextBuilder {
     pen.x += shift;
     if (vertical_) {
       TextPath down;
-      down.points = {Point{origin.x, origin.y - kVerticalReach}, Point{origin.x, origin.y + kVerticalReach}};
-      down.length = {0, 2 * kVerticalReach};
+      down.add_line(Point{origin.x, origin.y - kVerticalReach}, Point{origin.x, origin.y + kVerticalReach});
       down.start_offset = kVerticalReach;
       for (std::size_t g = chunk_first_glyph; g < placed_.size(); ++g)
         placed_[g].y -= baseline_line(placed_[g].element, Baseline::Central);
@@ -557,8 +623,6 @@ class TextBuilder {
     } else if (path >= 0) {
       const TextPath& tp = paths_[static_cast<std::size_t>(path)];
       place_on_path(tp, chunk_first_glyph);
-      // Text after the textPath goes on from where its last character ended on the path.
-      pen = tp.at(std::clamp(tp.start_offset + pen.x, 0.0, tp.total())).first;
     }
   }
 
@@ -732,14 +796,26 @@ class TextBuilder {
   }
 
   /// Glyphs of a textPath chunk: each placed with its advance's midpoint on the path, rotated to the tangent;
-  /// glyphs whose midpoint falls off the path are dropped.
+  /// glyphs whose midpoint falls off the path are dropped. On a single closed subpath the text wraps around
+  /// it, up to one turn in the direction text-anchor and direction leave room for (SVG 2, 11.8.3).
   void place_on_path(const TextPath& tp, std::size_t first) {
+    const double length = tp.total();
     std::size_t keep = first;
     for (std::size_t g = first; g < placed_.size(); ++g) {
       Placed p = placed_[g];
       const double advance = p.advance * p.stretch;
-      const double mid = tp.start_offset + p.x + advance / 2;
-      if (!(mid >= 0 && mid <= tp.total())) continue;
+      double mid = tp.start_offset + p.x + advance / 2;
+      if (tp.closed_loop) {
+        const TextProperties& t = element(p.element).style.text;
+        const double from_start = mid - tp.start_offset;
+        const bool forward = (t.anchor == TextAnchor::Start) != t.rtl;  // (start, ltr) or (end, rtl)
+        const double lo = t.anchor == TextAnchor::Middle ? -length / 2 : forward ? 0 : -length;
+        if (!(from_start >= lo && from_start <= lo + length)) continue;
+        mid = std::fmod(mid, length);
+        if (mid < 0) mid += length;
+      } else if (!(mid >= 0 && mid <= length)) {
+        continue;
+      }
       const auto [point, angle] = tp.at(mid);
       p.on_path = true;
       p.path_transform = Affine::translate(point.x, point.y) * Affine::rotate(angle * 180 / std::numbers::pi) *
@@ -752,12 +828,28 @@ class TextBuilder {
 
   // ---- 5. emit ----
 
+  /// Where a glyph's pen space (origin on the baseline, x along the advance, in px) lands in user space.
+  static Affine placement(const Placed& p) {
+    if (p.on_path) return p.path_transform;
+    if (p.rotate == 0) return Affine::translate(p.x, p.y);
+    return Affine::translate(p.x - p.ox, p.y - p.oy) * Affine::rotate(p.rotate) * Affine::translate(p.ox, p.oy);
+  }
+
   Affine glyph_transform(const Placed& p) const {
     const double s = p.size / p.font->units_per_em();
-    const Affine scale = Affine::scale(s * p.stretch, s);
-    if (p.on_path) return p.path_transform * scale;
-    if (p.rotate == 0) return Affine::translate(p.x, p.y) * scale;
-    return Affine::translate(p.x - p.ox, p.y - p.oy) * Affine::rotate(p.rotate) * Affine::translate(p.ox, p.oy) * scale;
+    return placement(p) * Affine::scale(s * p.stretch, s);
+  }
+
+  /// A glyph's full glyph cell: its advance wide, from the font's ascender to its descender (SVG 2, 8.10: the
+  /// bounding box of text is the union of these, not of the outlines).
+  Path glyph_cell(const Placed& p) const {
+    Path cell;
+    const double advance = p.advance * p.stretch;
+    if (!(advance > 0)) return cell;
+    const text::FontMetrics fm = p.font->metrics(std::min(p.size, kMaxShapeSize));
+    const double k = p.size / std::min(p.size, kMaxShapeSize);
+    cell.add_rect(Rect{0, fm.ascender * k, advance, fm.descender * k});
+    return cell.transformed(placement(p));
   }
 
   PathNode node_for(int e, Path path) {
@@ -848,7 +940,6 @@ class TextBuilder {
     };
     auto flush = [&] {
       if (current_element >= 0 && !current.empty()) {
-        include(current);
         glyph_nodes.push_back(node_for(current_element, std::move(current)));
       }
       current = Path();
@@ -858,6 +949,7 @@ class TextBuilder {
         flush();
         current_element = p.element;
       }
+      include(glyph_cell(p));
       const Path& outline = p.font->outline_units(p.glyph);
       if (!outline.empty()) current.add_path(outline.transformed(glyph_transform(p)));
     }

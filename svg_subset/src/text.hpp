@@ -71,9 +71,10 @@ inline constexpr std::size_t kMaxTextCharacters = std::size_t{1} << 18;
 bool is_text_property(std::string_view name);
 /// Whether `name` is a text property that may also be given as a presentation attribute.
 bool is_text_attribute(std::string_view name);
-/// Applies one declaration; false when the value is invalid (the caller warns). `parent` is for relative values.
+/// Applies one declaration; false when the value is invalid (the caller warns). `parent` is for relative values,
+/// `dpi` for physical units (ParseOptions::dpi).
 bool apply_text_property(std::string_view name, std::string_view value, TextProperties& s,
-                         const TextProperties& parent);
+                         const TextProperties& parent, double dpi);
 /// `inherit` for a text property.
 void inherit_text_property(std::string_view name, TextProperties& s, const TextProperties& parent);
 

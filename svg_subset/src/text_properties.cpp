@@ -30,18 +30,14 @@ std::vector<std::string_view> split_words(std::string_view v) {
   return out;
 }
 
-/// A CSS length with em/ex relative to `em` and percentages of `percent_of`.
-bool css_length(std::string_view v, double em, double percent_of, double& out) {
+/// A CSS length with em/ex relative to `em`, percentages of `percent_of` and physical units at `dpi`.
+bool css_length(std::string_view v, double em, double percent_of, double dpi, double& out) {
   std::size_t pos = 0;
   double number = 0;
   if (scan_number(v, pos, number) != NumberScan::Ok) return false;
   const std::string_view unit = v.substr(pos);
-  static constexpr std::pair<std::string_view, double> kUnits[] = {
-      {"", 1}, {"px", 1}, {"pt", 96.0 / 72.0}, {"pc", 16}, {"mm", 96.0 / 25.4}, {"cm", 96.0 / 2.54}, {"in", 96}};
-  double scale = -1;
-  for (const auto& [name, factor] : kUnits) {
-    if (iequals(unit, name)) scale = factor;
-  }
+  double scale = absolute_unit_scale(unit, dpi);
+  if (scale == 0) scale = -1;
   if (iequals(unit, "em")) scale = em;
   if (iequals(unit, "ex")) scale = em / 2;
   if (unit == "%") scale = percent_of / 100;
@@ -50,7 +46,7 @@ bool css_length(std::string_view v, double em, double percent_of, double& out) {
   return std::isfinite(out);
 }
 
-bool parse_font_size(std::string_view v, double parent, double& out) {
+bool parse_font_size(std::string_view v, double parent, double dpi, double& out) {
   // Absolute keywords: steps of 1.2 around medium = 12 px (what resvg's reference renderings use).
   static constexpr std::pair<std::string_view, int> kKeywords[] = {
       {"xx-small", -3}, {"x-small", -2}, {"small", -1}, {"medium", 0}, {"large", 1}, {"x-large", 2},
@@ -63,7 +59,7 @@ bool parse_font_size(std::string_view v, double parent, double& out) {
   }
   if (v == "larger") out = parent * 1.2;
   else if (v == "smaller") out = parent / 1.2;
-  else if (!css_length(v, parent, parent, out) || out < 0) return false;
+  else if (!css_length(v, parent, parent, dpi, out) || out < 0) return false;
   out = std::min(out, kMaxTextSize);
   return true;
 }
@@ -94,7 +90,7 @@ bool parse_stretch(std::string_view v, double& out) {
     }
   }
   if (v.empty() || v.back() != '%') return false;
-  return css_length(v, 0, 100, out) && out >= 0 && out <= 1000;
+  return css_length(v, 0, 100, /*dpi: a percentage has none*/ 96, out) && out >= 0 && out <= 1000;
 }
 
 bool parse_slant(std::string_view v, std::uint8_t& out) {
@@ -223,7 +219,7 @@ bool parse_baseline(std::string_view v, Baseline& out) {
 }
 
 /// The `font` shorthand: [style] [variant] [weight] [stretch] size[/line-height] family-list.
-bool apply_font_shorthand(std::string_view v, TextProperties& s, const TextProperties& parent) {
+bool apply_font_shorthand(std::string_view v, TextProperties& s, const TextProperties& parent, double dpi) {
   TextProperties t = s;
   t.font_style = 0;
   t.small_caps = false;
@@ -243,7 +239,7 @@ bool apply_font_shorthand(std::string_view v, TextProperties& s, const TextPrope
       t.small_caps = true;
     } else if (parse_weight(word, parent.font_weight, t.font_weight)) {
     } else if (parse_stretch(word, t.font_stretch) && word.back() != '%') {
-    } else if (parse_font_size(word.substr(0, slash), parent.font_size, t.font_size)) {
+    } else if (parse_font_size(word.substr(0, slash), parent.font_size, dpi, t.font_size)) {
       if (!parse_families(v.substr(end), t.font_family)) return false;
       s = t;
       return true;
@@ -267,10 +263,11 @@ bool is_text_property(std::string_view name) {
   return std::find(std::begin(kTextProperties), std::end(kTextProperties), name) != std::end(kTextProperties);
 }
 
-bool apply_text_property(std::string_view name, std::string_view v, TextProperties& s, const TextProperties& parent) {
-  if (name == "font") return apply_font_shorthand(v, s, parent);
+bool apply_text_property(std::string_view name, std::string_view v, TextProperties& s, const TextProperties& parent,
+                         double dpi) {
+  if (name == "font") return apply_font_shorthand(v, s, parent, dpi);
   if (name == "font-family") return parse_families(v, s.font_family);
-  if (name == "font-size") return parse_font_size(v, parent.font_size, s.font_size);
+  if (name == "font-size") return parse_font_size(v, parent.font_size, dpi, s.font_size);
   if (name == "font-weight") return parse_weight(v, parent.font_weight, s.font_weight);
   if (name == "font-style") return parse_slant(v, s.font_style);
   if (name == "font-stretch") return parse_stretch(v, s.font_stretch);
@@ -290,7 +287,7 @@ bool apply_text_property(std::string_view name, std::string_view v, TextProperti
       return true;
     }
     double d = 0;
-    if (!css_length(v, s.font_size, s.font_size, d)) return false;
+    if (!css_length(v, s.font_size, s.font_size, dpi, d)) return false;
     s.kerning = d != 0;
     return true;
   }
@@ -299,7 +296,7 @@ bool apply_text_property(std::string_view name, std::string_view v, TextProperti
   if (name == "letter-spacing" || name == "word-spacing") {
     double d = 0;
     const bool percent = !v.empty() && v.back() == '%';
-    if (v != "normal" && !css_length(v, s.font_size, 100, d)) return false;
+    if (v != "normal" && !css_length(v, s.font_size, 100, dpi, d)) return false;
     (name == "letter-spacing" ? s.letter_spacing : s.word_spacing) = std::clamp(d, -kMaxTextSize, kMaxTextSize);
     (name == "letter-spacing" ? s.letter_spacing_percent : s.word_spacing_percent) = percent;
     return true;
@@ -345,7 +342,7 @@ bool apply_text_property(std::string_view name, std::string_view v, TextProperti
       s.shift = v == "sub" ? TextProperties::Shift::Sub : TextProperties::Shift::Super;
     } else {
       double d = 0;
-      if (!css_length(v, s.font_size, s.font_size, d)) return false;
+      if (!css_length(v, s.font_size, s.font_size, dpi, d)) return false;
       s.shift = TextProperties::Shift::Length;
       s.shift_length = std::clamp(d, -kMaxTextSize, kMaxTextSize);
     }

@@ -185,6 +185,8 @@ TextArgs parse_args(int argc, char** argv) {
 
 }  // namespace
 
+std::string_view text_command_usage() { return kUsage; }
+
 int run_text_command(int argc, char** argv) {
   try {
     if (argc < 2 || std::string_view(argv[1]) != "text") throw UsageError{"run_text_command: expected 'text'"};

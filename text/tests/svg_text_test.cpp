@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <numbers>
 #include <string>
 
 #include "svg_subset/tree.hpp"
@@ -97,10 +98,10 @@ TEST(SvgText, GlyphPositionsFollowXAndDxLists) {
   // C: after B's advance, moved by its dx and dy.
   expect_box(paths[2]->path.bounds(), glyph_box(*font, 'C', 20, 50 + advance(*font, 'B', 20) + 5, 77));
   EXPECT_TRUE(same_color(paths[1]->fill->paint.color, Color::rgb8(255, 0, 0)));
-  // objectBoundingBox paints refer to the whole text's box.
+  // objectBoundingBox paints refer to the whole text's box: from A's pen to the end of C's advance.
   ASSERT_TRUE(paths[0]->paint_box.has_value());
-  EXPECT_EQ(paths[0]->paint_box->x0, paths[0]->path.bounds().x0);
-  EXPECT_NEAR(paths[0]->paint_box->x1, paths[2]->path.bounds().x1, 1e-9);
+  EXPECT_NEAR(paths[0]->paint_box->x0, 10, 1e-9);
+  EXPECT_NEAR(paths[0]->paint_box->x1, 50 + advance(*font, 'B', 20) + 5 + advance(*font, 'C', 20), 1e-9);
 }
 
 TEST(SvgText, RotateListTurnsEachGlyphAboutItsOrigin) {
@@ -222,6 +223,77 @@ TEST(SvgText, TextPathPlacesGlyphsAlongAStraightLine) {
   paths = text_paths(tree);
   ASSERT_EQ(paths.size(), 1u);
   EXPECT_NEAR(paths[0]->path.bounds().x1, glyph_box(*font, 'H', 20, a, 100).x1, 1e-6);
+}
+
+TEST(SvgText, TextPathFollowsTheCurveItselfNotAPolyline) {
+  // On a circle of radius 100 about (200, 100), a glyph's advance midpoint lies at arc length startOffset +
+  // advance / 2 and the glyph turns with the circle's tangent there (a polyline's chords would turn it by up to
+  // half a chord's bend, moving its top by a tenth of a unit).
+  const auto font = Font::load_file(system_font(kNotoSans));
+  const double a = advance(*font, 'H', 20), r = 100, offset = 40;
+  const svg::Tree tree = parse(
+      "<path id='p' d='M 300 100 A 100 100 0 0 1 100 100' fill='none'/>"
+      "<text font-family='Noto Sans' font-size='20'><textPath href='#p' startOffset='40'>H</textPath></text>");
+  const auto paths = text_paths(tree);
+  ASSERT_EQ(paths.size(), 1u);
+  const double theta = (offset + a / 2) / r;  // clockwise on screen from (300, 100)
+  const double s = 20.0 / font->units_per_em();
+  const Affine expected = Affine::translate(200 + r * std::cos(theta), 100 + r * std::sin(theta)) *
+                          Affine::rotate(theta * 180 / std::numbers::pi + 90) * Affine::translate(-a / 2, 0) *
+                          Affine::scale(s);
+  expect_box(paths[0]->path.bounds(), font->outline_units(font->glyph_index('H')).transformed(expected).bounds(), 1e-4);
+}
+
+TEST(SvgText, TextPathChunksAndTextAfterThePath) {
+  const auto font = Font::load_file(system_font(kNotoSans));
+  const double a = advance(*font, 'H', 20);
+  // An absolute x inside the textPath starts a chunk at that distance along the path (its y means nothing
+  // there); text after the textPath goes on from the path's end point (SVG 2, 11.8.3), not from its last glyph.
+  const svg::Tree tree = parse(
+      "<path id='p' d='M 20 100 L 220 100' fill='none'/>"
+      "<text font-family='Noto Sans' font-size='20'><textPath href='#p'>H<tspan x='50' y='30' fill='red'>H</tspan>"
+      "</textPath><tspan fill='blue'>H</tspan></text>");
+  const auto paths = text_paths(tree);
+  ASSERT_EQ(paths.size(), 3u);
+  expect_box(paths[0]->path.bounds(), glyph_box(*font, 'H', 20, 20, 100));
+  expect_box(paths[1]->path.bounds(), glyph_box(*font, 'H', 20, 70, 100));
+  expect_box(paths[2]->path.bounds(), glyph_box(*font, 'H', 20, 220, 100));
+  EXPECT_GT(220, 70 + a);  // the end point is not where the last glyph ended
+}
+
+TEST(SvgText, TextPathWrapsAroundOneClosedSubpathAndHonoursPathLength) {
+  const auto font = Font::load_file(system_font(kNotoSans));
+  const double a = advance(*font, 'H', 20);
+  // A closed square of perimeter 400: from startOffset 395 the first glyph's midpoint (395 + a / 2) wraps to the
+  // top edge; on the same square left open, it lies past the end and is dropped.
+  const std::string text = "<text font-family='Noto Sans' font-size='20'><textPath href='#p' startOffset='395'>H</textPath></text>";
+  svg::Tree tree = parse("<path id='p' d='M 0 100 H 100 V 200 H 0 Z' fill='none'/>" + text);
+  auto paths = text_paths(tree);
+  ASSERT_EQ(paths.size(), 1u);
+  ASSERT_GT(a, 10);  // so the midpoint 395 + a / 2 is past the end: it wraps to a / 2 - 5
+  expect_box(paths[0]->path.bounds(), glyph_box(*font, 'H', 20, -5, 100), 1e-6);
+  tree = parse("<path id='p' d='M 0 100 H 100 V 200 H 0 V 100' fill='none'/>" + text);
+  EXPECT_TRUE(text_paths(tree).empty());
+  // pathLength: startOffset counts in the author's units (here half the real ones).
+  tree = parse("<path id='p' d='M 20 100 L 220 100' pathLength='100' fill='none'/>"
+               "<text font-family='Noto Sans' font-size='20'><textPath href='#p' startOffset='10'>H</textPath></text>");
+  paths = text_paths(tree);
+  ASSERT_EQ(paths.size(), 1u);
+  expect_box(paths[0]->path.bounds(), glyph_box(*font, 'H', 20, 40, 100));
+}
+
+TEST(SvgText, TheTextBoxIsTheUnionOfFullGlyphCells) {
+  // SVG 2, 8.10: objectBoundingBox paints on text refer to the glyph cells (advance wide, ascender to
+  // descender), not to the outlines: a lowercase word without descenders still gets the descender's depth.
+  const auto font = Font::load_file(system_font(kNotoSans));
+  const svg::Tree tree = parse("<text x='10' y='80' font-family='Noto Sans' font-size='20'>vow</text>");
+  const auto paths = text_paths(tree);
+  ASSERT_EQ(paths.size(), 1u);
+  ASSERT_TRUE(paths[0]->paint_box.has_value());
+  const FontMetrics fm = font->metrics(20);
+  const double width = measure_text("vow", FontList(font), sized(20)).advance;
+  expect_box(*paths[0]->paint_box, Rect{10, 80 + fm.ascender, 10 + width, 80 + fm.descender}, 1e-6);
+  EXPECT_LT(paths[0]->path.bounds().y1, 80 + fm.descender - 1);  // the outlines stop well above it
 }
 
 TEST(SvgText, VerticalTextRunsDownWithGlyphsTurnedSideways) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "svg_subset/svg.hpp"
@@ -38,8 +39,17 @@ struct DrawStats {
 DrawStats draw_tree(const Tree& tree, Canvas& canvas, const DrawSettings& settings = {});
 
 /// The pixel size of the tree drawn at its intrinsic size (rounded up), or at a requested width and/or height
-/// (0 = not given) as output_size() computes it for a Document.
-std::pair<int, int> tree_output_size(const Tree& tree, int width = 0, int height = 0);
+/// and zoom (0 = not given) as output_size() computes it for a Document.
+std::pair<int, int> tree_output_size(const Tree& tree, int width = 0, int height = 0, double zoom = 0);
+
+/// The tree cut down to the element with `id`, as resvg's --export-id renders it: the first drawn element with
+/// that id in document order (use-expanded copies included), alone, under its ancestors' transforms but not their
+/// group effects (opacity, clip, mask, blend mode); its own effects and resolved style are kept. The intrinsic
+/// size is the element's bounding box in the viewport (fill and stroke outline, images by their viewport),
+/// rounded up to whole px, and the box's top-left corner is the origin. Nothing when no drawn element has that
+/// id (elements in <defs>, paint servers, hidden elements are not drawn); throws vraster::Error when the
+/// element's box is empty (a fill-only straight line, say).
+std::optional<Tree> element_tree(const Tree& tree, std::string_view id);
 
 /// Draws `tree` over `image` (not cleared first), scaled from the intrinsic size to the image size on each axis.
 template <class T>

@@ -97,10 +97,13 @@ struct Document {
   std::string file;  ///< the name given to parse_svg, for messages at render time
 };
 
-/// The output size for a requested width and/or height (0 = not given), as resvg and rsvg-convert size their
-/// output: one side given keeps the aspect ratio of the intrinsic size rounded to whole pixels (at least 1), the
-/// other side rounded up; neither given is the document's own size.
-std::pair<int, int> output_size(const Document& doc, int width, int height);
+/// The output size for a requested width and/or height (0 = not given) and zoom (0 = not given), as resvg and
+/// rsvg-convert size their output: one side given keeps the aspect ratio of the intrinsic size rounded to whole
+/// pixels (at least 1), the other side rounded up; neither given is the document's own size. A zoom scales the
+/// intrinsic size (rounded up); a width or height given with it is a maximum, as in rsvg-convert: when the zoomed
+/// size exceeds one, the size is what the width and/or height alone give. Throws vraster::Error when the size
+/// is out of range.
+std::pair<int, int> output_size(const Document& doc, int width, int height, double zoom = 0);
 
 /// Scales the drawing to `width` x `height` pixels (each axis on its own, from the intrinsic size).
 void scale_to(Document& doc, int width, int height);
@@ -117,6 +120,8 @@ struct ParseOptions {
   /// The fonts text may use. Null: the embedded default font (Noto Sans) alone.
   std::shared_ptr<text::FontDb> fonts;
   double default_font_size = 16;  ///< the root's font-size in px (CSS "medium")
+  /// Pixels per inch for the physical units (in, cm, mm, pt, pc): 1in is `dpi` px. CSS (and the default): 96.
+  double dpi = 96;
 };
 
 /// Flattens a resolved tree (tree.hpp) into draw items for the core Renderer: what it cannot draw yet

@@ -1,6 +1,8 @@
 // vraster_text: the `vraster text` subcommand.
 #pragma once
 
+#include <string_view>
+
 namespace vraster::text {
 
 /// Runs `vraster text "TEXT" [--font FILE] [--size PX] [--width W] [--align left|center|right] [--color C]
@@ -9,5 +11,8 @@ namespace vraster::text {
 /// Returns 0 on success; on bad arguments or input prints "vraster: message" to stderr and returns 2 without
 /// writing the output file.
 int run_text_command(int argc, char** argv);
+
+/// The usage text of `vraster text` (what `vraster text --help` prints).
+std::string_view text_command_usage();
 
 }  // namespace vraster::text
