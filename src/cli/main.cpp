@@ -35,6 +35,7 @@ constexpr const char* kUsage =
     "usage:\n"
     "  vraster render IN.svg -o OUT.png [-w|--width W] [-h|--height H] [--quiet] [--aa MODE] [--rule RULE]\n"
     "                 [--tolerance T] [--depth 8|16] [--background COLOR|transparent] [--bench N]\n"
+    "                 [--threads N]   (large fills in bands on N threads, 1 to 64; same pixels)\n"
     "                 [--hairline bresenham|dda|wu|analytic]   (every stroke as a 1-px hairline)\n"
     "                 [--allow-dir DIR]   (<image> files may come from DIR too, not only IN.svg's folder)\n"
     "                 [--no-plan]   (replay every draw call as recorded: no culling, no layer folding)\n"
@@ -66,6 +67,7 @@ struct RenderArgs {
   int depth = 8;
   Color background = Color::transparent();
   int bench_frames = 0;
+  int threads = 1;            ///< --threads: band threads of the renderer / canvas
   int width = 0, height = 0;  ///< requested output size (0: from the document)
   bool quiet = false;         ///< no warnings on stderr
   // Fonts for <text>.
@@ -182,6 +184,10 @@ RenderArgs parse_render_args(int argc, char** argv) {
       const double n = parse_number(arg, r.value(arg));
       if (!(n >= 1 && n <= 1e6) || n != std::floor(n)) throw UsageError{"--bench needs a frame count from 1 to 1000000"};
       a.bench_frames = static_cast<int>(n);
+    } else if (arg == "--threads") {
+      const double n = parse_number(arg, r.value(arg));
+      if (!(n >= 1 && n <= 64) || n != std::floor(n)) throw UsageError{"--threads needs a thread count from 1 to 64"};
+      a.threads = static_cast<int>(n);
     } else if (!arg.empty() && arg[0] == '-') {
       throw UsageError{"unknown option " + quoted(arg)};
     } else if (a.input.empty()) {
@@ -228,6 +234,7 @@ void render_frames(int width, int height, const RenderArgs& a, Draw&& draw) {
 template <class T>
 void render_document(const svg::Document& doc, const RenderArgs& a) {
   Renderer renderer;
+  renderer.set_threads(a.threads);
   render_frames<T>(doc.width, doc.height, a,
                    [&](BasicImage<T>& image) { svg::render(doc, image, a.settings, renderer); });
   warn_about_exact_fallbacks(renderer);
@@ -278,6 +285,7 @@ void render_tree(const svg::Tree& tree, const RenderArgs& a) {
   const std::optional<ScenePlan> plan = a.plan ? std::optional<ScenePlan>(plan_scene(scene)) : std::nullopt;
   render_frames<T>(w, h, a, [&](BasicImage<T>& image) {
     Canvas canvas(image);
+    canvas.set_threads(a.threads);
     canvas.draw_scene(scene, plan ? &*plan : nullptr);
     fallbacks += canvas.exact_fallbacks();
   });
