@@ -161,7 +161,7 @@ void detail::RasterizerImpl::edge_columns(int& x_base, int& columns) const {
 // Measured on the shared scenes (docs/performance.md, "Threads"): poly10_64 (64 x 64 boxes) is about break-even.
 constexpr int kMinBandRows = 16;
 constexpr std::int64_t kMinBandedCells = 96 * 96;
-constexpr int kBandsPerThread = 4;  // several bands per thread: a thread that finishes early takes another
+constexpr int kBandsPerThread = 8;  // several bands per thread: a thread that finishes early takes another
 
 int detail::RasterizerImpl::band_count(int columns, const CoverageSink& sink) const {
   const int rows = y_max_ - y_min_;
