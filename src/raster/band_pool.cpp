@@ -90,8 +90,14 @@ void BandPool::worker_loop(int worker) {
       const auto spin_until = std::chrono::steady_clock::now() + kSpinTime;
       int spins = 0;
       while (wake_.load(std::memory_order_relaxed) == seen && !stop_.load(std::memory_order_relaxed)) {
-        cpu_relax();
-        if (++spins % 64 == 0 && std::chrono::steady_clock::now() > spin_until) {
+        // After a short busy spin, yield between checks: on a machine whose cores are all busy, a waiting worker
+        // then hands its core to whoever can run (the thread drawing the frame, among others).
+        if (++spins < 256) {
+          cpu_relax();
+        } else {
+          std::this_thread::yield();
+        }
+        if (spins % 64 == 0 && std::chrono::steady_clock::now() > spin_until) {
           sleepers_.fetch_add(1);
           while (wake_.load() == seen && !stop_.load()) wake_.wait(seen);
           sleepers_.fetch_sub(1);

@@ -53,9 +53,9 @@ class RasterizerImpl {
     std::vector<std::uint64_t> touched;   // analytic sweep: one bit per cell written in the current row
     std::vector<float> coverage;          // analytic sweep: coverage handed to the sink
   };
-  /// How many bands rows [y_min_, y_max_) of a fill covering `columns` columns are cut into: 1 without threads, for
-  /// a sink that wants its calls in order, or where the fill is too small for bands to pay.
-  int band_count(int columns, const CoverageSink& sink) const;
+  /// How many bands rows [y_min_, y_max_) of edges_ are cut into: 1 without threads, for a sink that wants its
+  /// calls in order, or where the fill is too small for bands to pay (estimated from the edges).
+  int band_count(const CoverageSink& sink) const;
   /// Calls sweep(y0, y1, scratch) for every band of rows [y_min_, y_max_), on the pool's threads.
   template <class Sweep>
   void in_bands(int bands, Sweep&& sweep);

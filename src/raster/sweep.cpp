@@ -156,18 +156,31 @@ void detail::RasterizerImpl::edge_columns(int& x_base, int& columns) const {
   columns = static_cast<int>(x_hi) - x_base + 2;
 }
 
-// Bands pay where a fill has enough rows and pixels that its sweep and compositing outweigh handing the other
-// threads their bands (about a microsecond) and the per-band start (a pass over the edges above the band).
-// Measured on the shared scenes (docs/performance.md, "Threads"): poly10_64 (64 x 64 boxes) is about break-even.
+// Bands pay where a fill's work outweighs handing them out: a band costs a few cache-line transfers between cores
+// (claiming it, counting it done) and a pass over the edges above it, about half a microsecond. The work of a fill
+// is estimated from its edges: each edge writes cells along its height and across its width (the sweep's cost),
+// and the area inside is composited (spans, far cheaper per pixel). Units: about 10 ns each on the machine of
+// docs/performance.md ("Threads"), so a band of kWorkPerBand units is some 6 us.
 constexpr int kMinBandRows = 16;
-constexpr std::int64_t kMinBandedCells = 96 * 96;
-constexpr int kBandsPerThread = 8;  // several bands per thread: a thread that finishes early takes another
+constexpr double kWorkPerBand = 600;
+constexpr double kAreaPerUnit = 16;  // composited pixels per unit of work
+constexpr int kBandsPerThread = 8;   // several bands per thread: a thread that finishes early takes another
 
-int detail::RasterizerImpl::band_count(int columns, const CoverageSink& sink) const {
+int detail::RasterizerImpl::band_count(const CoverageSink& sink) const {
   const int rows = y_max_ - y_min_;
-  if (!pool_ || rows < 2 * kMinBandRows || std::int64_t{rows} * columns < kMinBandedCells) return 1;
-  if (!sink.takes_concurrent_rows()) return 1;
-  return std::min({rows / kMinBandRows, pool_->threads() * kBandsPerThread, BandPool::kMaxBands});
+  if (!pool_ || rows < 2 * kMinBandRows || !sink.takes_concurrent_rows()) return 1;
+  double outline = 0, signed_area = 0;
+  for (const Edge& e : edges_) {
+    outline += (e.y1 - e.y0) + std::abs(e.x1 - e.x0);
+    signed_area += 0.5 * (e.x0 + e.x1) * (e.y1 - e.y0) * e.winding;
+  }
+  const double work = outline + std::abs(signed_area) / kAreaPerUnit;
+  const int by_work = static_cast<int>(std::min(work / kWorkPerBand, double{BandPool::kMaxBands}));
+  if (by_work < 2) return 1;
+  const int threads = pool_->threads();
+  const int bands = std::min({by_work, rows / kMinBandRows, threads * kBandsPerThread});
+  // A whole number of bands per thread, so that no thread is left with one band more than the others at the end.
+  return bands > threads ? bands - bands % threads : bands;
 }
 
 template <class Sweep>
@@ -208,7 +221,7 @@ void detail::RasterizerImpl::sweep_analytic(FillRule rule, int width, CoverageSi
   if (sweep_dense(rule, width, x_base, columns, sink)) return;
   bucket_edges(false);
   const std::size_t cells = static_cast<std::size_t>(width) + 2;
-  in_bands(band_count(columns, sink), [&](int y0, int y1, BandScratch& s) {
+  in_bands(band_count(sink), [&](int y0, int y1, BandScratch& s) {
     if (s.accumulation.size() < cells) s.accumulation.assign(cells, 0.0);
     if (s.touched.size() < cells / 64 + 1) s.touched.assign(cells / 64 + 1, 0);
     if (s.coverage.size() < cells) s.coverage.resize(cells);
@@ -224,10 +237,8 @@ void detail::RasterizerImpl::sweep_analytic(FillRule rule, int width, CoverageSi
 // Point-sampled modes: every row's sample counts are integers from the edges alone, so bands (each re-bucketing
 // the edges for its rows) give the same coverage as one sweep.
 void detail::RasterizerImpl::sweep_sampled(FillRule rule, AntiAlias aa, int width, CoverageSink& sink) {
-  int x_base = 0, columns = 0;
-  edge_columns(x_base, columns);
   const detail::SamplePattern pattern = detail::sample_pattern(aa);
-  in_bands(band_count(columns, sink), [&](int y0, int y1, BandScratch&) {
+  in_bands(band_count(sink), [&](int y0, int y1, BandScratch&) {
     detail::sweep_sampled(edges_, y0, y1, rule, pattern, width, sink);  // supersample.cpp
   });
 }
@@ -237,10 +248,8 @@ void detail::RasterizerImpl::sweep_sampled(FillRule rule, AntiAlias aa, int widt
 // when its centre lies in [left crossing, right crossing) (top-left rule: of two shapes sharing an edge exactly
 // one owns each pixel centre on it).
 void detail::RasterizerImpl::sweep_aliased(FillRule rule, int width, CoverageSink& sink) {
-  int x_base = 0, columns = 0;
-  edge_columns(x_base, columns);
   bucket_edges(true);
-  in_bands(band_count(columns, sink), [&](int y0, int y1, BandScratch& s) {
+  in_bands(band_count(sink), [&](int y0, int y1, BandScratch& s) {
     // Edges that end at or above the band's first sample line would be retired there anyway. A band's active list
     // starts in a different order than a whole sweep's (which keeps it sorted by x); crossings are sorted per row,
     // and edges crossing at the same x start and end spans at the same pixel, so the pixels are the same.
