@@ -45,8 +45,9 @@ class RasterizerImpl {
     double x;
     std::uint32_t edge;
   };
-  // What one thread needs to sweep a band of rows (one per thread; the caller's is bands_[0]).
-  struct BandScratch {
+  // What one thread needs to sweep a band of rows (one per thread; the caller's is bands_[0]). Each on cache lines
+  // of its own: the sweeps write their vectors' sizes every row, and two threads must not share those lines.
+  struct alignas(64) BandScratch {
     std::vector<std::uint32_t> active;    // the active edge list (indices into edges_)
     std::vector<Crossing> crossings;      // aliased sweep: active edges with their x at the sample row
     std::vector<double> accumulation;     // analytic sweep: one row of signed area deltas, width + 2 cells

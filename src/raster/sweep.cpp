@@ -160,9 +160,10 @@ void detail::RasterizerImpl::edge_columns(int& x_base, int& columns) const {
 // (claiming it, counting it done) and a pass over the edges above it, about half a microsecond. The work of a fill
 // is estimated from its edges: each edge writes cells along its height and across its width (the sweep's cost),
 // and the area inside is composited (spans, far cheaper per pixel). Units: about 10 ns each on the machine of
-// docs/performance.md ("Threads"), so a band of kWorkPerBand units is some 6 us.
-constexpr int kMinBandRows = 16;
-constexpr double kWorkPerBand = 600;
+// docs/performance.md ("Threads"), so a band of kWorkPerBand units is some 3 us.
+constexpr int kMinBandRows = 8;
+constexpr double kWorkPerBand = 300;    // small bands balance well: whoever finishes first takes the next
+constexpr double kMinBandedWork = 800;   // below this, the fork and join cost more than the second thread saves
 constexpr double kAreaPerUnit = 16;  // composited pixels per unit of work
 constexpr int kBandsPerThread = 8;   // several bands per thread: a thread that finishes early takes another
 
@@ -175,8 +176,8 @@ int detail::RasterizerImpl::band_count(const CoverageSink& sink) const {
     signed_area += 0.5 * (e.x0 + e.x1) * (e.y1 - e.y0) * e.winding;
   }
   const double work = outline + std::abs(signed_area) / kAreaPerUnit;
+  if (work < kMinBandedWork) return 1;
   const int by_work = static_cast<int>(std::min(work / kWorkPerBand, double{BandPool::kMaxBands}));
-  if (by_work < 2) return 1;
   const int threads = pool_->threads();
   const int bands = std::min({by_work, rows / kMinBandRows, threads * kBandsPerThread});
   // A whole number of bands per thread, so that no thread is left with one band more than the others at the end.
