@@ -27,7 +27,7 @@ class Blend2DEngine final : public Engine {
   const char* name() const override { return "blend2d"; }
   std::string version() const override {
     return "Blend2D " + std::to_string(BL_VERSION >> 16) + "." + std::to_string((BL_VERSION >> 8) & 0xFF) + "." +
-           std::to_string(BL_VERSION & 0xFF);
+           std::to_string(BL_VERSION & 0xFF) + " (synchronous context, JIT pipelines as built by default)";
   }
 
   void prepare(const vraster::svg::Document& doc) override {
@@ -38,6 +38,7 @@ class Blend2DEngine final : public Engine {
     if (image_.create(width_, height_, BL_FORMAT_PRGB32) != BL_SUCCESS) throw std::runtime_error("BLImage::create failed");
     BLContextCreateInfo info{};
     info.thread_count = 0;  // synchronous, single-threaded
+    info.flags = 0;         // no BL_CONTEXT_CREATE_FLAG_DISABLE_JIT: the JIT pipelines, Blend2D's default
     if (ctx_.begin(image_, info) != BL_SUCCESS) throw std::runtime_error("BLContext::begin failed");
     for (const vraster::svg::DrawItem& item : doc.items) {
       if (!item.is_fill()) continue;  // the fill benchmark compares fills only

@@ -1,4 +1,7 @@
-// vraster itself: Renderer::fill per item into a vraster::Image, the calls svg::render makes.
+// vraster itself: Renderer::fill per item into a vraster::Image, the calls svg::render makes; optionally with the
+// renderer's band threads (Renderer::set_threads).
+#include <string>
+
 #include "engines.hpp"
 #include "vraster/renderer.hpp"
 
@@ -7,7 +10,10 @@ namespace {
 
 class VrasterEngine final : public Engine {
  public:
-  const char* name() const override { return "vraster"; }
+  explicit VrasterEngine(int threads) : name_(threads > 1 ? "vraster-" + std::to_string(threads) + "t" : "vraster") {
+    renderer_.set_threads(threads);
+  }
+  const char* name() const override { return name_.c_str(); }
   std::string version() const override { return "vraster (this tree)"; }
 
   void prepare(const vraster::svg::Document& doc) override {
@@ -30,6 +36,7 @@ class VrasterEngine final : public Engine {
   vraster::Image image() const override { return image_; }
 
  private:
+  std::string name_;
   const vraster::svg::Document* doc_ = nullptr;
   vraster::Image image_;
   vraster::Renderer renderer_;
@@ -37,6 +44,6 @@ class VrasterEngine final : public Engine {
 
 }  // namespace
 
-std::unique_ptr<Engine> make_vraster_engine() { return std::make_unique<VrasterEngine>(); }
+std::unique_ptr<Engine> make_vraster_engine(int threads) { return std::make_unique<VrasterEngine>(threads); }
 
 }  // namespace bench

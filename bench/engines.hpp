@@ -26,7 +26,8 @@ class Engine {
   virtual std::string version() const = 0;
 };
 
-std::unique_ptr<Engine> make_vraster_engine();
+/// vraster with `threads` band threads (Renderer::set_threads); 1 is the single-threaded engine of the comparison.
+std::unique_ptr<Engine> make_vraster_engine(int threads = 1);
 std::unique_ptr<Engine> make_cairo_engine();
 std::unique_ptr<Engine> make_freetype_engine();
 /// Only in builds configured with -DVRASTER_BENCH_BLEND2D_ROOT=PREFIX.

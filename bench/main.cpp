@@ -1,11 +1,13 @@
-// vraster_bench: renders the shared benchmark scenes with vraster, Cairo and FreeType's smooth rasterizer in the
-// same run, single-threaded, and prints the median ms per frame as a Markdown table.
+// vraster_bench: renders the shared benchmark scenes with vraster, Cairo, FreeType's smooth rasterizer and (when
+// built with -DVRASTER_BENCH_BLEND2D_ROOT) Blend2D in the same run, one thread each, plus vraster with --threads N
+// band threads (default 2), and prints the median ms per frame as a Markdown table.
 //
-//   vraster_bench [SCENE_DIR] [--frames N] [--time SECONDS] [--scene NAME]... [--check] [--no-timing] [--out DIR]
+//   vraster_bench [SCENE_DIR] [--frames N] [--time SECONDS] [--scene NAME]... [--threads N] [--check] [--no-timing]
+//                 [--out DIR]
 //
 // A frame is: clear to white + fill every path in file order (source-over, antialiased) + flush. Parsing and
 // path building happen before timing. Each engine renders 1 warm-up frame, then frames in batches of ~0.1 s,
-// the three engines taking turns (so a burst of load from other processes hits all of them), until each has
+// the engines taking turns (so a burst of load from other processes hits all of them), until each has
 // rendered N frames (--frames) or at least 5 frames and --time seconds (default 0.5).
 #include <algorithm>
 #include <chrono>
@@ -37,6 +39,7 @@ struct Options {
   int frames = 0;  // 0: time-based
   double seconds = 0.5;
   std::vector<std::string> scenes;
+  int threads = 2;  // the threaded vraster column; 1: none
   bool check = false;
   bool timing = true;
   std::string out_dir;
@@ -49,7 +52,9 @@ struct Options {
                "  --frames N       timed frames per engine and scene (default: >= 5 frames and --time)\n"
                "  --time SECONDS   minimum timed seconds per engine and scene (default 0.5)\n"
                "  --scene NAME     only this scene (file name without .svg); repeatable, or comma-separated\n"
-               "  --check          compare vraster's image with Cairo's and FreeType's per scene\n"
+               "  --threads N      add vraster with N band threads (default 2; 1: no such column)\n"
+               "  --check          compare vraster's image with the other engines' per scene (and the threaded\n"
+               "                   vraster's with vraster's: it must be identical)\n"
                "  --no-timing      render one frame per engine only (with --check or --out)\n"
                "  --out DIR        write DIR/SCENE.ENGINE.png for every scene and engine\n");
   std::exit(status);
@@ -88,6 +93,12 @@ Options parse_args(int argc, char** argv) {
         const std::size_t comma = std::min(list.find(',', start), list.size());
         if (comma > start) o.scenes.push_back(list.substr(start, comma - start));
         start = comma + 1;
+      }
+    } else if (a == "--threads") {
+      o.threads = std::atoi(value().c_str());
+      if (o.threads < 1 || o.threads > 64) {
+        std::fprintf(stderr, "vraster_bench: --threads needs a number from 1 to 64\n");
+        usage(2);
       }
     } else if (a == "--check") {
       o.check = true;
@@ -236,7 +247,7 @@ struct Result {
   std::vector<std::optional<double>> ms;  // per engine; nothing = failed
   std::vector<int> frames;
   std::vector<std::string> errors;
-  std::optional<Diff> vs_cairo, vs_freetype, cairo_vs_freetype;
+  std::optional<Diff> vs_cairo, vs_freetype, cairo_vs_freetype, vs_blend2d, threaded_vs_one;
   std::string worst;  // where the largest differences are, with the pixels of each engine
 };
 
@@ -275,14 +286,19 @@ int main(int argc, char** argv) {
   engines.push_back(bench::make_vraster_engine());
   engines.push_back(bench::make_cairo_engine());
   engines.push_back(bench::make_freetype_engine());
+  constexpr std::size_t kVraster = 0, kCairo = 1, kFreeType = 2, kNone = ~std::size_t{0};
+  std::size_t kBlend2D = kNone, kThreaded = kNone;
 #ifdef VRASTER_BENCH_WITH_BLEND2D
+  kBlend2D = engines.size();
   engines.push_back(bench::make_blend2d_engine());
-  constexpr bool kHaveBlend2D = true;
-#else
-  constexpr bool kHaveBlend2D = false;
 #endif
+  const bool kHaveBlend2D = kBlend2D != kNone;
+  if (opt.threads > 1) {
+    kThreaded = engines.size();
+    engines.push_back(bench::make_vraster_engine(opt.threads));
+  }
+  const bool have_threaded = kThreaded != kNone;
   const std::size_t E = engines.size();
-  constexpr std::size_t kVraster = 0, kCairo = 1, kFreeType = 2, kBlend2D = 3;
 
   std::vector<Result> results;
   bool load_failed = false;
@@ -381,6 +397,12 @@ int main(int argc, char** argv) {
       if (opt.check && images[kCairo] && images[kFreeType]) {
         r.cairo_vs_freetype = compare(*images[kCairo], *images[kFreeType]);
       }
+      if (opt.check && images[kVraster] && kHaveBlend2D && images[kBlend2D]) {
+        r.vs_blend2d = compare(*images[kVraster], *images[kBlend2D]);
+      }
+      if (opt.check && images[kVraster] && have_threaded && images[kThreaded]) {
+        r.threaded_vs_one = compare(*images[kThreaded], *images[kVraster]);
+      }
       if (opt.check) {
         auto px = [&](int x, int y) {
           std::string s;
@@ -393,7 +415,8 @@ int main(int argc, char** argv) {
           }
           return s;
         };
-        for (const auto& [label, d] : {std::pair{"vraster/cairo", r.vs_cairo}, std::pair{"vraster/freetype", r.vs_freetype}}) {
+        for (const auto& [label, d] : {std::pair{"vraster/cairo", r.vs_cairo}, std::pair{"vraster/freetype", r.vs_freetype},
+                                       std::pair{"vraster/blend2d", r.vs_blend2d}}) {
           if (d && d->max > 0) {
             r.worst += std::string(r.worst.empty() ? "" : "; ") + label + " max at (" + std::to_string(d->worst_x) +
                        "," + std::to_string(d->worst_y) + "):" + px(d->worst_x, d->worst_y);
@@ -421,64 +444,67 @@ int main(int argc, char** argv) {
       : opt.frames > 0 ? "median ms per frame of " + std::to_string(opt.frames) + " frames after 1 warm-up"
                        : "median ms per frame after 1 warm-up, at least 5 frames and " + fmt_ms(opt.seconds) +
                              " s per engine and scene";
-  std::printf("%s; %s%s%s; %s; %u hardware threads, 1 used; %s.\n\n", engines[kCairo]->version().c_str(),
+  std::printf("%s; %s%s%s; %s; %u hardware threads, 1 used per engine%s; %s.\n\n", engines[kCairo]->version().c_str(),
               engines[kFreeType]->version().c_str(), kHaveBlend2D ? "; " : "",
               kHaveBlend2D ? engines[kBlend2D]->version().c_str() : "", cpu_model().c_str(),
-              std::thread::hardware_concurrency(), method.c_str());
+              std::thread::hardware_concurrency(),
+              have_threaded ? (" (" + std::to_string(opt.threads) + " for " + engines[kThreaded]->name() + ")").c_str()
+                            : "",
+              method.c_str());
 
   if (opt.timing) {
-    std::printf("| scene | vraster ms | cairo ms | freetype ms | cairo/vraster | freetype/vraster |\n");
-    std::printf("| --- | ---: | ---: | ---: | ---: | ---: |\n");
-    std::vector<double> gv, gc, gf, rc, rf;
+    // One table: every engine's ms, then vraster's ratio to each (one thread each), then the threaded speed-up.
+    auto cell = [](const std::optional<double>& v) { return v ? fmt_ms(*v) : std::string("fails"); };
+    std::vector<std::size_t> columns = {kVraster};
+    if (have_threaded) columns.push_back(kThreaded);
+    columns.insert(columns.end(), {kCairo, kFreeType});
+    if (kHaveBlend2D) columns.push_back(kBlend2D);
+    // Ratios: other / vraster for Cairo and FreeType (> 1: vraster is faster); vraster / Blend2D as issue 17 states
+    // its target (<= 1: vraster is as fast or faster); one thread / N threads for the speed-up.
+    struct Ratio {
+      std::string label;
+      std::size_t num, den;
+    };
+    std::vector<Ratio> ratios = {{"cairo/vraster", kCairo, kVraster}, {"freetype/vraster", kFreeType, kVraster}};
+    if (kHaveBlend2D) ratios.push_back({"vraster/blend2d", kVraster, kBlend2D});
+    if (have_threaded) ratios.push_back({"speed-up " + std::string(engines[kThreaded]->name()), kVraster, kThreaded});
+    std::printf("| scene |");
+    for (const std::size_t k : columns) std::printf(" %s ms |", engines[k]->name());
+    for (const Ratio& q : ratios) std::printf(" %s |", q.label.c_str());
+    std::printf("\n| --- |");
+    for (std::size_t i = 0; i < columns.size() + ratios.size(); ++i) std::printf(" ---: |");
+    std::printf("\n");
+    std::vector<std::vector<double>> ms_of(E), ratio_of(ratios.size());
     for (const Result& r : results) {
-      auto cell = [](const std::optional<double>& v) { return v ? fmt_ms(*v) : std::string("fails"); };
-      std::string ratio_c = "-", ratio_f = "-";
-      if (r.ms[kVraster]) gv.push_back(*r.ms[kVraster]);
-      if (r.ms[kCairo]) gc.push_back(*r.ms[kCairo]);
-      if (r.ms[kFreeType]) gf.push_back(*r.ms[kFreeType]);
-      if (r.ms[kVraster] && r.ms[kCairo]) {
-        const double x = *r.ms[kCairo] / *r.ms[kVraster];
-        rc.push_back(x);
-        ratio_c = fmt_ratio(x);
+      std::printf("| %s |", r.scene.c_str());
+      for (const std::size_t k : columns) {
+        if (r.ms[k]) ms_of[k].push_back(*r.ms[k]);
+        std::printf(" %s |", cell(r.ms[k]).c_str());
       }
-      if (r.ms[kVraster] && r.ms[kFreeType]) {
-        const double x = *r.ms[kFreeType] / *r.ms[kVraster];
-        rf.push_back(x);
-        ratio_f = fmt_ratio(x);
+      for (std::size_t i = 0; i < ratios.size(); ++i) {
+        const auto& a = r.ms[ratios[i].num];
+        const auto& b = r.ms[ratios[i].den];
+        if (a && b) {
+          ratio_of[i].push_back(*a / *b);
+          std::printf(" %s |", fmt_ratio(*a / *b).c_str());
+        } else {
+          std::printf(" - |");
+        }
       }
-      std::printf("| %s | %s | %s | %s | %s | %s |\n", r.scene.c_str(), cell(r.ms[kVraster]).c_str(),
-                  cell(r.ms[kCairo]).c_str(), cell(r.ms[kFreeType]).c_str(), ratio_c.c_str(), ratio_f.c_str());
+      std::printf("\n");
     }
-    std::printf("| **geometric mean** | %s | %s | %s | **%s** | **%s** |\n", gv.empty() ? "-" : fmt_ms(geomean(gv)).c_str(),
-                gc.empty() ? "-" : fmt_ms(geomean(gc)).c_str(), gf.empty() ? "-" : fmt_ms(geomean(gf)).c_str(),
-                rc.empty() ? "-" : fmt_ratio(geomean(rc)).c_str(), rf.empty() ? "-" : fmt_ratio(geomean(rf)).c_str());
-    std::printf("\nRatios > 1: vraster is faster. Geometric means of ms are over the scenes each engine renders "
+    std::printf("| **geometric mean** |");
+    for (const std::size_t k : columns) std::printf(" %s |", ms_of[k].empty() ? "-" : fmt_ms(geomean(ms_of[k])).c_str());
+    for (const auto& v : ratio_of) std::printf(" **%s** |", v.empty() ? "-" : fmt_ratio(geomean(v)).c_str());
+    std::printf("\n\ncairo/vraster, freetype/vraster > 1: vraster is faster; vraster/blend2d < 1: vraster is faster "
+                "(single-threaded, same run). Geometric means of ms are over the scenes each engine renders "
                 "(FreeType's excludes its failures); ratio means are over the scenes both engines render.\n");
 
-    // Against Blend2D measured in this run: the issue's target is vraster / Blend2D <= 1 on every scene.
-    if (kHaveBlend2D) {
-      std::printf("\n| scene | vraster ms | blend2d ms | vraster/blend2d |\n| --- | ---: | ---: | ---: |\n");
-      std::vector<double> rb;
-      for (const Result& r : results) {
-        std::string ratio = "-";
-        if (r.ms[kVraster] && r.ms[kBlend2D]) {
-          const double x = *r.ms[kVraster] / *r.ms[kBlend2D];
-          rb.push_back(x);
-          ratio = fmt_ratio(x);
-        }
-        auto cell = [](const std::optional<double>& v) { return v ? fmt_ms(*v) : std::string("fails"); };
-        std::printf("| %s | %s | %s | %s |\n", r.scene.c_str(), cell(r.ms[kVraster]).c_str(),
-                    cell(r.ms[kBlend2D]).c_str(), ratio.c_str());
-      }
-      std::printf("| **geometric mean** | | | **%s** |\n", rb.empty() ? "-" : fmt_ratio(geomean(rb)).c_str());
-      std::printf("\nvraster/blend2d < 1: vraster is faster (time ratio, single-threaded, same run).\n");
-    }
-
-    // Against the anchor figures: vraster's speed-up over FreeType (and Cairo), measured here, next to
-    // Blend2D's in ../shared/bench/README.md. "vs Blend2D" = our ratio / Blend2D's ratio (> 1: we would be faster).
+    // Without Blend2D in the run: vraster's speed-up over FreeType (and Cairo), measured here, next to Blend2D's in
+    // ../shared/bench/README.md. "vs Blend2D" = our ratio / Blend2D's ratio (> 1: we would be faster).
     bool any_anchor = false;
     for (const Result& r : results) any_anchor = any_anchor || kAnchors.count(r.scene);
-    if (any_anchor) {
+    if (any_anchor && !kHaveBlend2D) {
       std::printf("\n| scene | freetype/vraster | freetype/Blend2D (anchor) | vs Blend2D via FreeType | cairo/vraster | "
                   "cairo/Blend2D (anchor) | vs Blend2D via Cairo |\n");
       std::printf("| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n");
@@ -515,10 +541,14 @@ int main(int argc, char** argv) {
     }
   }
 
+
   if (opt.check) {
     std::printf("\n| scene | vraster vs cairo: mean abs diff | max | px > 16 | vraster vs freetype: mean abs diff | max | "
-                "px > 16 | (reference) cairo vs freetype: mean | max | px > 16 |\n");
-    std::printf("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+                "px > 16 |%s (reference) cairo vs freetype: mean | max | px > 16 |%s\n",
+                kHaveBlend2D ? " vraster vs blend2d: mean abs diff | max | px > 16 |" : "",
+                have_threaded ? " threaded vraster = vraster |" : "");
+    std::printf("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |%s%s\n",
+                kHaveBlend2D ? " ---: | ---: | ---: |" : "", have_threaded ? " :---: |" : "");
     for (const Result& r : results) {
       auto cells = [](const std::optional<Diff>& d) {
         if (!d) return std::string("- | - | -");
@@ -526,8 +556,14 @@ int main(int argc, char** argv) {
         std::snprintf(buf, sizeof buf, "%.3f | %d | %zu", d->mean, d->max, d->over);
         return std::string(buf);
       };
-      std::printf("| %s | %s | %s | %s |\n", r.scene.c_str(), cells(r.vs_cairo).c_str(), cells(r.vs_freetype).c_str(),
-                  cells(r.cairo_vs_freetype).c_str());
+      std::printf("| %s | %s | %s |", r.scene.c_str(), cells(r.vs_cairo).c_str(), cells(r.vs_freetype).c_str());
+      if (kHaveBlend2D) std::printf(" %s |", cells(r.vs_blend2d).c_str());
+      std::printf(" %s |", cells(r.cairo_vs_freetype).c_str());
+      if (have_threaded) {
+        // Threads must not change a bit.
+        std::printf(" %s |", !r.threaded_vs_one ? "-" : r.threaded_vs_one->max == 0 ? "yes" : "**NO**");
+      }
+      std::printf("\n");
     }
     std::printf("\nDifferences are per 8-bit channel of the premultiplied RGBA frames (0..255); \"px > 16\" counts "
                 "pixels where some channel differs by more than 16.\n\nLargest differences (x, y; RGBA of each engine):\n\n");

@@ -34,7 +34,7 @@ install(FILES ${PROJECT_BINARY_DIR}/vrasterConfig.cmake ${PROJECT_BINARY_DIR}/vr
 set(vraster_pc_dir ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 file(RELATIVE_PATH VRASTER_PC_TO_PREFIX /prefix/${vraster_pc_dir} /prefix)
 string(REGEX REPLACE "/$" "" VRASTER_PC_TO_PREFIX "${VRASTER_PC_TO_PREFIX}")
-set(vraster_cxx_runtime "-lstdc++ -lm")
+set(vraster_cxx_runtime "-lstdc++ -lm -pthread")
 if(BUILD_SHARED_LIBS)
   set(VRASTER_PC_REQUIRES "Requires.private")
   set(VRASTER_PC_CXX_LIBS_PUBLIC "")

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,37 @@ TEST(CliRender, PixelAlignedRectanglesGiveTheHandMadeImageInEveryMode) {
   expect_pixels(white, kRectsMap,
                 {{'.', {255, 255, 255, 255}}, {'R', {255, 0, 0, 255}}, {'B', {0, 0, 255, 255}}, {'G', {0, 255, 0, 255}}},
                 "render --background white");
+}
+
+// --threads N rasterizes large fills in bands on N threads: the image must be the same bytes as with one thread,
+// through clips, group opacity, strokes and curves, in 8 and 16 bits.
+TEST(CliRender, ThreadsGiveTheSameBytes) {
+  const std::string svg = write_file("threads.svg", R"svg(<svg xmlns="http://www.w3.org/2000/svg" width="400" height="300">
+  <clipPath id="c"><circle cx="200" cy="150" r="130"/></clipPath>
+  <path d="M 10 10 L 390 40 L 60 290 L 300 20 L 380 280 Z" fill="#3070c0" fill-opacity="0.7" fill-rule="evenodd"/>
+  <g clip-path="url(#c)" opacity="0.8">
+    <path d="M 0 150 C 100 -50 300 350 400 150 S 200 0 0 150 Z" fill="#c03030"/>
+    <rect x="50.3" y="60.7" width="300.2" height="180.9" fill="#30c070" fill-opacity="0.5"/>
+  </g>
+  <path d="M 20 280 Q 200 -100 380 280" fill="none" stroke="#202020" stroke-width="9.5"/>
+</svg>)svg");
+  // The PNG files themselves are compared (the encoder is deterministic), so 16-bit output is compared in full.
+  auto render_bytes = [&](const std::string& args) {
+    const std::string out = work_dir() + "/threads.png";
+    std::filesystem::remove(out);
+    std::string log;
+    EXPECT_EQ(run_vraster(args + " -o '" + out + "'", log), 0) << args << "\n" << log;
+    std::ifstream in(out, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  for (const char* depth : {"8", "16"}) {
+    for (const char* aa : {"analytic", "none", "msaa-8"}) {
+      const std::string args = "render '" + svg + "' --depth " + depth + " --aa " + aa;
+      const std::string one = render_bytes(args + " --threads 1");
+      ASSERT_GT(one.size(), 100u) << args;
+      EXPECT_TRUE(one == render_bytes(args + " --threads 3")) << args;
+    }
+  }
 }
 
 TEST(CliRender, SixteenBitOutputHasFullRangeChannels) {

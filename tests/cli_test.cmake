@@ -172,6 +172,8 @@ foreach(args "render" "render;${DATA}/tiny.svg" "bogus-command" "render;${DATA}/
              "render;${DATA}/tiny.svg;-o;x.png;--depth;12" "render;${DATA}/tiny.svg;-o;x.png;--bench;0"
              "render;${DATA}/tiny.svg;-o;x.png;--bench;1.5" "render;${DATA}/tiny.svg;-o;x.png;--aa;fuzzy"
              "render;${DATA}/tiny.svg;-o;x.png;--rule;sometimes" "render;${DATA}/tiny.svg;-o;x.png;--tolerance;0"
+             "render;${DATA}/tiny.svg;-o;x.png;--threads;0" "render;${DATA}/tiny.svg;-o;x.png;--threads;65"
+             "render;${DATA}/tiny.svg;-o;x.png;--threads;1.5"
              "demo;--nope")
   run_vraster(${args})
   expect_status("usage error '${args}'" 2)

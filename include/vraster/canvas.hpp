@@ -204,6 +204,13 @@ class Canvas {
   /// (Rasterizer::exact_fallbacks), so that callers can warn.
   std::uint64_t exact_fallbacks() const;
 
+  // ---- threads ----
+  /// Rasterizes large fills on up to `threads` threads (clamped to [1, 64]; Rasterizer::set_threads): bands of rows
+  /// swept by workers this canvas owns. The pixels are the same, bit for bit, as with one thread (the default).
+  /// Fills painted with gradients or patterns, and unbounded operators, stay on one thread.
+  void set_threads(int threads);
+  int threads() const;
+
   // ---- hit testing (user coordinates mapped by the current transform) ----
   bool is_point_in_path(double x, double y) const;
   bool is_point_in_path(double x, double y, FillRule rule) const;

@@ -83,6 +83,11 @@ class Compositor final : public CoverageSink {
   /// As span(), then lerps by `clip` (may be null; levels): a run of constant coverage through a clip mask's row.
   void span(int y, int x0, int x1, float coverage, const T* clip);
 
+  /// True when the current draw call paints one constant colour: span() and row() then change nothing but the
+  /// target's pixels, so rows may come from several threads. (Gradients and patterns shade into a buffer kept in
+  /// the compositor: their calls stay on one thread.)
+  bool takes_concurrent_rows() const override;
+
   /// True when nothing the current draw call could do changes a pixel (invisible paint or zero alpha with a
   /// bounded operator): callers skip rasterization altogether.
   bool draws_nothing() const;

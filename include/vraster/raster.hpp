@@ -72,6 +72,11 @@ class CoverageSink {
   virtual void span(int y, int x0, int x1, float coverage) = 0;
   /// Pixels [x0, x1) of row y have coverage coverage[0 .. x1-x0) (entries may be 0).
   virtual void row(int y, int x0, int x1, const float* coverage) = 0;
+  /// Whether span() and row() may be called from several threads at once, each thread with rows of its own (a
+  /// rasterizer with set_threads(n > 1) sweeps large fills in bands of rows). Calls then come in increasing y within
+  /// each band, and no two threads ever get the same row. Sinks that keep state across calls answer false (the
+  /// default) and get every call on the caller's thread, in order.
+  virtual bool takes_concurrent_rows() const { return false; }
 };
 
 /// A device-space line segment, stored top to bottom (y0 < y1), with the direction of the original segment.
@@ -149,6 +154,16 @@ class Rasterizer {
   static constexpr std::size_t kMaxNonExteriorPoints = std::size_t{1} << 18;
   /// How many fills of this rasterizer took that fallback so far.
   std::uint64_t exact_fallbacks() const;
+
+  /// Sweeps large fills on up to `threads` threads (clamped to [1, 64]; 1, the default, starts no thread): the
+  /// edges are built once, then bands of rows are swept by a small pool of workers owned by this rasterizer, when
+  /// the sink takes concurrent rows (CoverageSink::takes_concurrent_rows) and the fill is large enough to gain.
+  /// The coverage is the same, bit for bit, as with one thread. Every mode but Exact's boundary sweep is banded
+  /// (exact fills that analytic coverage already resolves exactly take the analytic sweep, which is).
+  void set_threads(int threads);
+  int threads() const;
+  /// How many bands of rows the last fill() was swept in (1: on the caller's thread alone; for tests and tools).
+  int last_fill_bands() const;
 
  private:
   std::unique_ptr<detail::RasterizerImpl> impl_;  // one allocation per Rasterizer, none per fill

@@ -21,6 +21,8 @@ class SolidCompositor final : public CoverageSink {
   SolidCompositor(BasicImage<T>& image, Color color);
   void span(int y, int x0, int x1, float coverage) override;
   void row(int y, int x0, int x1, const float* coverage) override;
+  /// Rows are independent pixels and nothing changes between calls.
+  bool takes_concurrent_rows() const override { return true; }
 
  private:
   void span8(int y, int x0, int x1, float coverage);
@@ -99,6 +101,9 @@ class Renderer {
   const Polylines& flatten_for_fill(const Path& path, const Affine& transform, double tolerance, int width,
                                     int height);
   Rasterizer& rasterizer() { return rasterizer_; }
+  /// Threads for large fills (Rasterizer::set_threads): same pixels, bit for bit, as one thread.
+  void set_threads(int threads) { rasterizer_.set_threads(threads); }
+  int threads() const { return rasterizer_.threads(); }
   /// Points flattened by this renderer's fills so far (for work limits across many draw calls).
   std::uint64_t flattened_points() const { return flattened_points_; }
 

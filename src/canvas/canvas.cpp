@@ -493,6 +493,8 @@ std::int64_t Canvas::flood_fill(int x, int y, Color fill, const SeedFillOptions&
                   : vraster::flood_fill(*s.image16, x, y, fill, options);
 }
 std::uint64_t Canvas::exact_fallbacks() const { return impl_->renderer.rasterizer().exact_fallbacks(); }
+void Canvas::set_threads(int threads) { impl_->renderer.set_threads(threads); }
+int Canvas::threads() const { return impl_->renderer.threads(); }
 
 void Canvas::apply_fxaa() {
   if (impl_->recording) {

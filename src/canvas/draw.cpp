@@ -57,6 +57,10 @@ class ClipSink final : public CoverageSink {
                  [&](int a, int b, const T* clip) { out_.row(dy, a, b, coverage + (a - dx0), clip); });
   }
 
+  /// Bounded operators read only the clip mask, so rows are independent when the compositor's are; unbounded ones
+  /// collect each row and flush the rows in between, which needs them in order.
+  bool takes_concurrent_rows() const override { return !unbounded_ && out_.takes_concurrent_rows(); }
+
   /// Unbounded operators: composites the rows not reached yet (with coverage 0 where nothing was drawn).
   void finish() {
     if (unbounded_) move_to_row(region_.height());
@@ -203,6 +207,9 @@ class LevelSink final : public CoverageSink {
       e.full1 = x1;
     }
   }
+  /// Each call writes its row of the plane and that row's extent only.
+  bool takes_concurrent_rows() const override { return true; }
+
   void row(int y, int x0, int x1, const float* coverage) override {
     T* row = plane_ + static_cast<std::size_t>(y) * width_;
     for (int x = x0; x < x1; ++x) row[x] = static_cast<T>(detail::ChannelMath<T>::quantize(coverage[x - x0]));

@@ -63,6 +63,7 @@ const char* const kRenderUsage =
     "  -                 as IN.svg: read the document from standard input (<image> files then come from the\n"
     "                    current directory, or --allow-dir)\n"
     "  -j, --jobs N      render a batch on N threads, one file each (default 1; 0: one per processor)\n"
+    "  --threads N       large fills of one file in bands on N threads, 1 to 64 (default 1; same pixels)\n"
     "  --allow-dir DIR   <image> files may also come from DIR, not only from IN.svg's folder\n"
     "  --quiet           no warnings\n"
     "Drawing:\n"
@@ -95,6 +96,7 @@ struct RenderArgs {
   int depth = 8;
   Color background = Color::transparent();
   int bench_frames = 0;
+  int threads = 1;            ///< --threads: band threads of the renderer / canvas (one file)
   int width = 0, height = 0;  ///< requested output size (0: from the document)
   double zoom = 0;            ///< --zoom (0: not given)
   double dpi = 96;            ///< --dpi
@@ -235,6 +237,8 @@ RenderArgs parse_render_args(int argc, char** argv) {
       }
     } else if (arg == "--bench") {
       a.bench_frames = parse_count(arg, r.value(arg), 1, 1000000, "frames");
+    } else if (arg == "--threads") {
+      a.threads = parse_count(arg, r.value(arg), 1, 64, "threads");
     } else if (arg.size() > 1 && arg[0] == '-') {
       throw UsageError{"unknown option " + vraster::quoted(arg)};
     } else {
@@ -368,6 +372,7 @@ void render_frames(int width, int height, const RenderArgs& a, const std::string
 template <class T>
 void render_document(const svg::Document& doc, const RenderArgs& a, const std::string& output, std::ostream& log) {
   Renderer renderer;
+  renderer.set_threads(a.threads);
   render_frames<T>(doc.width, doc.height, a, output, [&](BasicImage<T>& image, bool) {
     image.clear(a.background);
     svg::render(doc, image, a.settings, renderer);
@@ -397,6 +402,7 @@ void render_tree(const svg::Tree& tree, const RenderArgs& a, const std::string& 
   const bool redraw_tiles = plan && !a.aa.fxaa;
   render_frames<T>(w, h, a, output, [&](BasicImage<T>& image, bool first) {
     Canvas canvas(image);
+    canvas.set_threads(a.threads);
     if (redraw_tiles) {
       canvas.draw_frame(scene, *plan, first ? nullptr : &*plan, a.background);
     } else {

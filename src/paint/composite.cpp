@@ -180,6 +180,11 @@ void Compositor<T>::set(ImageView<T> target, const Paint& paint, const Affine& u
 }
 
 template <class T>
+bool Compositor<T>::takes_concurrent_rows() const {
+  return state_->shader.is_constant();
+}
+
+template <class T>
 bool Compositor<T>::draws_nothing() const {
   return state_->nothing;
 }

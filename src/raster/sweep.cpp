@@ -49,13 +49,15 @@ inline float coverage_of_branchless(double s) {
 }
 
 // The row loop, compiled for AVX2 and for any x86-64 (picked at load time); no FMA, so both give the same bits.
+// Sweeps rows [y_from, y_to) starting from `active` (start_active); every row's arithmetic is a function of the
+// edges and the row alone (x_at from each edge's own start, pieces added in active-list order), so a band gives the
+// bits a sweep of the whole range gives.
 template <FillRule R>
 VRASTER_CLONES void sweep_analytic_rows(const std::vector<Edge>& edges, const std::vector<std::uint32_t>& order,
                          const std::vector<std::uint32_t>& bucket_start, std::vector<std::uint32_t>& active,
-                         int y_min, int y_max, int width, double* acc, std::uint64_t* bits, float* cov,
+                         int y_min, int y_from, int y_to, int width, double* acc, std::uint64_t* bits, float* cov,
                          CoverageSink& sink) {
-  active.clear();
-  for (int y = y_min; y < y_max; ++y) {
+  for (int y = y_from; y < y_to; ++y) {
     const int r = y - y_min;
     for (std::uint32_t k = bucket_start[r]; k < bucket_start[r + 1]; ++k) active.push_back(order[k]);
     if (active.empty()) continue;
@@ -128,17 +130,8 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
 
 }  // namespace
 
-bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, CoverageSink& sink) {
+bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink) {
   if (edges_.empty() || dense_limit_ <= 0) return false;
-  double x_lo = edges_[0].x0, x_hi = x_lo;
-  for (const Edge& e : edges_) {
-    x_lo = std::min({x_lo, e.x0, e.x1});
-    x_hi = std::max({x_hi, e.x0, e.x1});
-  }
-  const int x_base = static_cast<int>(x_lo);  // x >= 0 after clipping: truncation is floor
-  // Columns: every cell an edge can write (x_hi's cell and the one after it), so the running sum returns to 0
-  // inside the block wherever the path closes inside the image.
-  const int columns = static_cast<int>(x_hi) - x_base + 2;
   const std::int64_t cells = static_cast<std::int64_t>(columns) * (y_max_ - y_min_);
   if (cells > dense_limit_) return false;
   if (dense_block_.size() < static_cast<std::size_t>(cells)) dense_block_.assign(static_cast<std::size_t>(cells), 0.0);
@@ -151,19 +144,103 @@ bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, CoverageSink&
   return true;
 }
 
+// The columns edges_ reach: cells [x_base, x_base + columns) hold every cell an edge can write (the last edge's
+// cell and the one after it), so a running sum over them returns to 0 wherever the path closes inside the image.
+void detail::RasterizerImpl::edge_columns(int& x_base, int& columns) const {
+  double x_lo = edges_[0].x0, x_hi = x_lo;
+  for (const Edge& e : edges_) {
+    x_lo = std::min({x_lo, e.x0, e.x1});
+    x_hi = std::max({x_hi, e.x0, e.x1});
+  }
+  x_base = static_cast<int>(x_lo);  // x >= 0 after clipping: truncation is floor
+  columns = static_cast<int>(x_hi) - x_base + 2;
+}
+
+// Bands pay where a fill's work outweighs handing them out: a band costs a few cache-line transfers between cores
+// (claiming it, counting it done) and a pass over the edges above it, about half a microsecond. The work of a fill
+// is estimated from its edges: each edge writes cells along its height and across its width (the sweep's cost),
+// and the area inside is composited (spans, far cheaper per pixel). Units: about 10 ns each on the machine of
+// docs/performance.md ("Threads"), so a band of kWorkPerBand units is some 3 us.
+constexpr int kMinBandRows = 8;
+constexpr double kWorkPerBand = 300;    // small bands balance well: whoever finishes first takes the next
+constexpr double kMinBandedWork = 800;   // below this, the fork and join cost more than the second thread saves
+constexpr double kAreaPerUnit = 16;  // composited pixels per unit of work
+constexpr int kBandsPerThread = 8;   // several bands per thread: a thread that finishes early takes another
+
+int detail::RasterizerImpl::band_count(const CoverageSink& sink) const {
+  const int rows = y_max_ - y_min_;
+  if (!pool_ || rows < 2 * kMinBandRows || !sink.takes_concurrent_rows()) return 1;
+  double outline = 0, signed_area = 0;
+  for (const Edge& e : edges_) {
+    outline += (e.y1 - e.y0) + std::abs(e.x1 - e.x0);
+    signed_area += 0.5 * (e.x0 + e.x1) * (e.y1 - e.y0) * e.winding;
+  }
+  const double work = outline + std::abs(signed_area) / kAreaPerUnit;
+  if (work < kMinBandedWork) return 1;
+  const int by_work = static_cast<int>(std::min(work / kWorkPerBand, double{BandPool::kMaxBands}));
+  const int threads = pool_->threads();
+  const int bands = std::min({by_work, rows / kMinBandRows, threads * kBandsPerThread});
+  // A whole number of bands per thread, so that no thread is left with one band more than the others at the end.
+  return bands > threads ? bands - bands % threads : bands;
+}
+
+template <class Sweep>
+void detail::RasterizerImpl::in_bands(int bands, Sweep&& sweep) {
+  last_fill_bands_ = std::max(bands, 1);
+  if (bands <= 1) {
+    sweep(y_min_, y_max_, bands_[0]);
+    return;
+  }
+  const int rows = y_max_ - y_min_;
+  auto job = [&](int band, int worker) {
+    const int y0 = y_min_ + static_cast<int>(std::int64_t{rows} * band / bands);
+    const int y1 = y_min_ + static_cast<int>(std::int64_t{rows} * (band + 1) / bands);
+    sweep(y0, y1, bands_[static_cast<std::size_t>(worker)]);
+  };
+  pool_->run(bands, job);
+}
+
+void detail::RasterizerImpl::start_active(int y_from, double retire_at, std::vector<std::uint32_t>& active) const {
+  active.clear();
+  const std::uint32_t before = bucket_start_[static_cast<std::size_t>(y_from - y_min_)];
+  for (std::uint32_t k = 0; k < before; ++k) {
+    if (edges_[order_[k]].y1 > retire_at) active.push_back(order_[k]);
+  }
+}
+
+void detail::RasterizerImpl::set_threads(int threads) {
+  threads = std::clamp(threads, 1, 64);
+  if (threads == this->threads()) return;
+  pool_.reset();
+  if (threads > 1) pool_ = std::make_unique<BandPool>(threads);
+  bands_.resize(static_cast<std::size_t>(threads));
+}
+
 void detail::RasterizerImpl::sweep_analytic(FillRule rule, int width, CoverageSink& sink) {
-  if (sweep_dense(rule, width, sink)) return;
+  int x_base = 0, columns = 0;
+  edge_columns(x_base, columns);
+  if (sweep_dense(rule, width, x_base, columns, sink)) return;
   bucket_edges(false);
   const std::size_t cells = static_cast<std::size_t>(width) + 2;
-  if (accumulation_.size() < cells) accumulation_.assign(cells, 0.0);
-  if (touched_.size() < cells / 64 + 1) touched_.assign(cells / 64 + 1, 0);
-  if (row_coverage_.size() < cells) row_coverage_.resize(cells);
-  double* acc = accumulation_.data();
-  std::uint64_t* bits = touched_.data();
-  float* cov = row_coverage_.data();
-  with_rule(rule, [&](auto r) {
-    sweep_analytic_rows<decltype(r)::value>(edges_, order_, bucket_start_, active_, y_min_, y_max_, width, acc, bits,
-                                            cov, sink);
+  in_bands(band_count(sink), [&](int y0, int y1, BandScratch& s) {
+    if (s.accumulation.size() < cells) s.accumulation.assign(cells, 0.0);
+    if (s.touched.size() < cells / 64 + 1) s.touched.assign(cells / 64 + 1, 0);
+    if (s.coverage.size() < cells) s.coverage.resize(cells);
+    // An edge whose bottom is at or above the band's top was retired before it (e.y1 > bottom keeps an edge).
+    start_active(y0, y0, s.active);
+    with_rule(rule, [&](auto r) {
+      sweep_analytic_rows<decltype(r)::value>(edges_, order_, bucket_start_, s.active, y_min_, y0, y1, width,
+                                              s.accumulation.data(), s.touched.data(), s.coverage.data(), sink);
+    });
+  });
+}
+
+// Point-sampled modes: every row's sample counts are integers from the edges alone, so bands (each re-bucketing
+// the edges for its rows) give the same coverage as one sweep.
+void detail::RasterizerImpl::sweep_sampled(FillRule rule, AntiAlias aa, int width, CoverageSink& sink) {
+  const detail::SamplePattern pattern = detail::sample_pattern(aa);
+  in_bands(band_count(sink), [&](int y0, int y1, BandScratch&) {
+    detail::sweep_sampled(edges_, y0, y1, rule, pattern, width, sink);  // supersample.cpp
   });
 }
 
@@ -173,39 +250,51 @@ void detail::RasterizerImpl::sweep_analytic(FillRule rule, int width, CoverageSi
 // one owns each pixel centre on it).
 void detail::RasterizerImpl::sweep_aliased(FillRule rule, int width, CoverageSink& sink) {
   bucket_edges(true);
-  active_.clear();
-  for (int y = y_min_; y < y_max_; ++y) {
+  in_bands(band_count(sink), [&](int y0, int y1, BandScratch& s) {
+    // Edges that end at or above the band's first sample line would be retired there anyway. A band's active list
+    // starts in a different order than a whole sweep's (which keeps it sorted by x); crossings are sorted per row,
+    // and edges crossing at the same x start and end spans at the same pixel, so the pixels are the same.
+    start_active(y0, y0 + 0.5, s.active);
+    sweep_aliased_rows(rule, width, y0, y1, s, sink);
+  });
+}
+
+void detail::RasterizerImpl::sweep_aliased_rows(FillRule rule, int width, int y_from, int y_to, BandScratch& s,
+                                                CoverageSink& sink) {
+  std::vector<std::uint32_t>& active = s.active;
+  std::vector<Crossing>& crossings = s.crossings;
+  for (int y = y_from; y < y_to; ++y) {
     const int r = y - y_min_;
-    for (std::uint32_t k = bucket_start_[r]; k < bucket_start_[r + 1]; ++k) active_.push_back(order_[k]);
+    for (std::uint32_t k = bucket_start_[r]; k < bucket_start_[r + 1]; ++k) active.push_back(order_[k]);
     const double sample = y + 0.5;
     // Retire edges that end at or above this sample line, and find where the others cross it.
-    crossings_.clear();
+    crossings.clear();
     std::size_t kept = 0;
-    for (std::size_t k = 0; k < active_.size(); ++k) {
-      const Edge& e = edges_[active_[k]];
+    for (std::size_t k = 0; k < active.size(); ++k) {
+      const Edge& e = edges_[active[k]];
       if (e.y1 <= sample) continue;
-      active_[kept++] = active_[k];
-      if (e.y0 <= sample) crossings_.push_back({e.x_at(sample), active_[k]});
+      active[kept++] = active[k];
+      if (e.y0 <= sample) crossings.push_back({e.x_at(sample), active[k]});
     }
-    active_.resize(kept);
-    if (crossings_.empty()) continue;
+    active.resize(kept);
+    if (crossings.empty()) continue;
     // The crossings of the previous row are nearly sorted: insertion sort is linear in practice.
-    for (std::size_t i = 1; i < crossings_.size(); ++i) {
-      const Crossing c = crossings_[i];
+    for (std::size_t i = 1; i < crossings.size(); ++i) {
+      const Crossing c = crossings[i];
       std::size_t j = i;
-      while (j > 0 && crossings_[j - 1].x > c.x) {
-        crossings_[j] = crossings_[j - 1];
+      while (j > 0 && crossings[j - 1].x > c.x) {
+        crossings[j] = crossings[j - 1];
         --j;
       }
-      crossings_[j] = c;
+      crossings[j] = c;
     }
     // Keep the active list in crossing order so next row's sort has little to do.
-    for (std::size_t i = 0; i < crossings_.size(); ++i) active_[i] = crossings_[i].edge;
-    active_.resize(crossings_.size());
+    for (std::size_t i = 0; i < crossings.size(); ++i) active[i] = crossings[i].edge;
+    active.resize(crossings.size());
     int w = 0;
     int span_start = 0;
     bool in = false;
-    for (const Crossing& c : crossings_) {
+    for (const Crossing& c : crossings) {
       w += edges_[c.edge].winding;
       const bool now = winding_fills(rule, w);
       if (now == in) continue;
@@ -240,10 +329,14 @@ const std::vector<Edge>& Rasterizer::edges() const { return impl_->edges_; }
 void Rasterizer::set_dense_limit(std::int64_t cells) { impl_->dense_limit_ = cells; }
 void Rasterizer::set_exact_shortcut(bool on) { impl_->exact_shortcut_ = on; }
 void Rasterizer::set_rect_shortcut(bool on) { impl_->rect_shortcut_ = on; }
+void Rasterizer::set_threads(int threads) { impl_->set_threads(threads); }
+int Rasterizer::threads() const { return impl_->threads(); }
+int Rasterizer::last_fill_bands() const { return impl_->last_fill_bands_; }
 std::uint64_t Rasterizer::exact_fallbacks() const { return impl_->exact_fallbacks_; }
 
 void detail::RasterizerImpl::fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
                                   CoverageSink& sink) {
+  last_fill_bands_ = 1;
   if (width <= 0 || height <= 0) return;
   if (fill_rect(lines, rule, aa, width, height, sink)) return;
   if (rule == FillRule::NonExterior) {
@@ -277,8 +370,8 @@ void detail::RasterizerImpl::fill(const Polylines& lines, FillRule rule, AntiAli
     }
   }
   if (edges_.empty()) return;
-  if (const detail::SamplePattern pattern = detail::sample_pattern(aa); pattern.grid > 0) {
-    detail::sweep_sampled(edges_, y_min_, y_max_, rule, pattern, width, sink);  // ssaa-N, msaa-N: supersample.cpp
+  if (detail::sample_pattern(aa).grid > 0) {
+    sweep_sampled(rule, aa, width, sink);  // ssaa-N, msaa-N
   } else if (aa == AntiAlias::None) {
     sweep_aliased(rule, width, sink);
   } else {
