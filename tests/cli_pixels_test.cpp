@@ -18,27 +18,6 @@
 using namespace vraster;
 using namespace vraster::test;
 
-namespace {
-
-// Three pixel-aligned rectangles on an 8 x 6 canvas: every antialiasing mode but fxaa (a post-filter that blurs
-// colour edges on purpose) covers each pixel fully or not at all, so all give this exact image.
-const char* kRects = R"(<svg xmlns="http://www.w3.org/2000/svg" width="8" height="6">
-  <rect x="1" y="1" width="3" height="2" fill="#ff0000"/>
-  <rect x="4" y="2" width="3" height="3" fill="#0000ff"/>
-  <path d="M2 4h1v1h-1z" fill="#00ff00"/>
-</svg>
-)";
-const std::vector<std::string> kRectsMap = {
-    "........",  //
-    ".RRR....",  //
-    ".RRRBBB.",  //
-    "....BBB.",  //
-    "..G.BBB.",  //
-    "........",  //
-};
-
-}  // namespace
-
 TEST(CliRender, PixelAlignedRectanglesGiveTheHandMadeImageInEveryMode) {
   const std::string svg = write_file("rects.svg", kRects);
   const std::string out = work_dir() + "/rects.png";

@@ -18,21 +18,6 @@ using namespace vraster::test;
 
 namespace {
 
-// Three pixel-aligned rectangles on an 8 x 6 canvas (as in cli_pixels_test.cpp).
-const char* kRects = R"(<svg xmlns="http://www.w3.org/2000/svg" width="8" height="6">
-  <rect x="1" y="1" width="3" height="2" fill="#ff0000"/>
-  <rect x="4" y="2" width="3" height="3" fill="#0000ff"/>
-  <path d="M2 4h1v1h-1z" fill="#00ff00"/>
-</svg>
-)";
-const std::vector<std::string> kRectsMap = {
-    "........",  //
-    ".RRR....",  //
-    ".RRRBBB.",  //
-    "....BBB.",  //
-    "..G.BBB.",  //
-    "........",  //
-};
 const std::vector<std::pair<char, Rgba>> kLegend = {
     {'.', {0, 0, 0, 0}}, {'R', {255, 0, 0, 255}}, {'B', {0, 0, 255, 255}}, {'G', {0, 255, 0, 255}}};
 

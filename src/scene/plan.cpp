@@ -302,6 +302,7 @@ class Planner {
       }
       cull_call(i);
       mark_aliased(i);
+      mark_front_to_back(i);
     }
     open_at_end_ = std::move(open);
   }
@@ -558,9 +559,8 @@ class Planner {
 
   // ---- coverage ----
 
-  /// A fill that is a rectangle with whole-pixel corners needs no antialiasing work: its coverage is 0 or 1.
-  /// Not with a shadow: the shadow pass draws the shape moved by a fractional offset.
-  void mark_aliased(std::size_t i) {
+  /// An opaque mesh drawn aliased with a z-buffer it writes: drawn nearest triangle first.
+  void mark_front_to_back(std::size_t i) {
     const SceneCommand& c = scene_.commands[i];
     PlanDecision& d = plan_.decisions[i];
     if (d.action == Action::Draw && c.kind == Kind::Mesh) {
@@ -570,8 +570,14 @@ class Planner {
       const MeshOptions& o = c.mesh_options;
       d.front_to_back = o.depth == DepthMode::ZBuffer && !o.antialias && o.write_depth && c.state.global_alpha >= 1 &&
                         c.mesh && c.mesh->triangles.size() > 1 && mesh_is_opaque(*c.mesh, o);
-      return;
     }
+  }
+
+  /// A fill that is a rectangle with whole-pixel corners needs no antialiasing work: its coverage is 0 or 1.
+  /// Not with a shadow: the shadow pass draws the shape moved by a fractional offset.
+  void mark_aliased(std::size_t i) {
+    const SceneCommand& c = scene_.commands[i];
+    PlanDecision& d = plan_.decisions[i];
     if (d.action != Action::Draw || c.kind != Kind::Fill || c.state.aa == AntiAlias::None || casts_shadow(c.state)) {
       return;
     }

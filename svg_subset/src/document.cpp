@@ -192,6 +192,14 @@ constexpr int kMaxImageNesting = 4;
 /// largest size).
 constexpr std::int64_t kMaxDocumentImagePixels = std::int64_t{1} << 27;
 
+/// Clip-path content is drawn as coverage: what counts is that it paints, opaquely (the colour is unused).
+Paint opaque_black() {
+  Paint p;
+  p.kind = Paint::Kind::Color;
+  p.color = Color{0, 0, 0, 1};
+  return p;
+}
+
 class Builder {
  public:
   /// `image_depth` is 0 for a document, n for an SVG image n levels down; `pixels_left` is the decoded-pixel
@@ -1342,7 +1350,7 @@ class Builder {
     p.id = node.attribute("id").value();
     std::tie(p.line, p.column) = lines_.position(at);
     if (in_clip_) {  // clip geometry: fill and stroke have no effect, clip-rule is the rule
-      if (style.visible) p.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1, {}}, style.clip_rule};
+      if (style.visible) p.fill = Fill{opaque_black(), style.clip_rule};
     } else if (style.visible && name != "line") {
       const Paint paint = resolve_paint(style.fill, style.fill_opacity, style);
       if (paint.kind != Paint::Kind::None) p.fill = Fill{paint, style.fill_rule};
@@ -1653,7 +1661,7 @@ class Builder {
     auto content = std::make_shared<Group>();
     PathNode rect;
     rect.path.add_rect(r);
-    rect.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1, {}}, FillRule::NonZero};
+    rect.fill = Fill{opaque_black(), FillRule::NonZero};
     content->children.push_back(Node{std::move(rect)});
     clip->content = std::move(content);
     return clip;
@@ -1911,7 +1919,7 @@ class Builder {
     detail::SpanStyle out;
     out.text = s.text;
     if (in_clip_) {  // clip geometry, as path_node: filled with the clip-rule, never stroked
-      if (s.visible) out.fill = Fill{Paint{Paint::Kind::Color, Color{0, 0, 0, 1}, {}, {}, 1, {}}, s.clip_rule};
+      if (s.visible) out.fill = Fill{opaque_black(), s.clip_rule};
     } else if (s.visible) {
       const Paint fill = resolve_paint(s.fill, s.fill_opacity, s);
       if (fill.kind != Paint::Kind::None) out.fill = Fill{fill, s.fill_rule};
@@ -1977,13 +1985,8 @@ class Builder {
       } else if ((kind == K::ContextFill || kind == K::ContextStroke) && context_fill_) {
         context_used_ = true;
         const Paint& context = kind == K::ContextFill ? *context_fill_ : *context_stroke_;
-        paint.kind = context.kind;
-        paint.color = context.color;
-        paint.gradient = context.gradient;
-        paint.pattern = context.pattern;
-        paint.fallback = context.fallback;
-        paint.context_space = context.context_space;
-        paint.context_box = context.context_box;
+        paint = context;
+        paint.opacity = opacity;  // the shape's own fill- or stroke-opacity
         // A server is placed in the context element's space once that element is built (place_context_paints).
         paint.from_context = !context.context_space &&
                              (context.kind == Paint::Kind::Gradient || context.kind == Paint::Kind::Pattern);

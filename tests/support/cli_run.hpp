@@ -82,4 +82,21 @@ inline void expect_pixels(const Image& image, const std::vector<std::string>& ma
   EXPECT_EQ(wrong, 0) << what;
 }
 
+// Three pixel-aligned rectangles on an 8 x 6 canvas and the image they must give: every antialiasing mode but fxaa
+// (a post-filter that blurs colour edges on purpose) covers each pixel fully or not at all.
+inline const char* const kRects = R"(<svg xmlns="http://www.w3.org/2000/svg" width="8" height="6">
+  <rect x="1" y="1" width="3" height="2" fill="#ff0000"/>
+  <rect x="4" y="2" width="3" height="3" fill="#0000ff"/>
+  <path d="M2 4h1v1h-1z" fill="#00ff00"/>
+</svg>
+)";
+inline const std::vector<std::string> kRectsMap = {
+    "........",  //
+    ".RRR....",  //
+    ".RRRBBB.",  //
+    "....BBB.",  //
+    "..G.BBB.",  //
+    "........",  //
+};
+
 }  // namespace vraster::test
