@@ -165,6 +165,25 @@ class Rasterizer {
   /// How many bands of rows the last fill() was swept in (1: on the caller's thread alone; for tests and tools).
   int last_fill_bands() const;
 
+  /// As fill(), but with threads (set_threads(n > 1)) the fill may wait in a queue until flush(): the edges are
+  /// built now, and flush() cuts the rows of every queued fill into bands that the threads take, each band running
+  /// the whole queue over its rows in order. One fork and join for the queue instead of one per fill, and small
+  /// fills are spread over the threads too. The coverage is the same, bit for bit, as fill() one by one.
+  ///
+  /// The rasterizer owns `sink` until its fill has run. Queued: fills whose sink takes concurrent rows, in every
+  /// mode but Exact, under every rule but NonExterior; the others (and every fill without threads) are drawn at
+  /// once, after what is queued. Whatever the sinks write (the image) must not be read or written otherwise before
+  /// flush(); fill(), set_threads() and the destructor flush first, and the queue runs by itself when it holds more
+  /// than a memory budget (16 MiB of edge tables).
+  void fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
+                   std::unique_ptr<CoverageSink> sink);
+  /// Runs the queued fills (nothing when none is queued).
+  void flush();
+  /// Fills waiting for flush() (for tests and tools).
+  std::size_t queued_fills() const;
+  /// How many bands of rows the last flush ran its queue in (1: on the caller's thread alone; 0: no flush yet).
+  int last_flush_bands() const;
+
  private:
   std::unique_ptr<detail::RasterizerImpl> impl_;  // one allocation per Rasterizer, none per fill
 };
