@@ -138,6 +138,10 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
     q.edges.swap(edges_);
     q.order.swap(order_);
     q.bucket_start.swap(bucket_start_);
+    if (q.kind == QueuedFill::Kind::Dense || q.kind == QueuedFill::Kind::Sampled) {
+      q.order.clear();  // not bucketed: what came over is an earlier fill's table
+      q.bucket_start.clear();
+    }
   }
   q.sink = std::move(sink);
   ++queued_;
