@@ -295,7 +295,7 @@ class Forward final : public CoverageSink {
 };
 
 // Every queued fill's coverage calls, row by row, are those of the same fill drawn alone on one thread: the large
-// sweeps, the small dense paths (swept whole by every band they cross, only the band's rows passed on) and a
+// sweeps, the small dense paths (a block of the band's rows only, in each band they cross) and a
 // rectangle (recorded, then replayed band by band).
 TEST(Threads, QueuedCoverageCallsAreTheSameRowByRow) {
   for (std::uint32_t seed = 40; seed < 43; ++seed) {

@@ -6,7 +6,7 @@
 //   2. flush: rows [lowest fill top, highest fill bottom) cut into bands, each with the list of fills crossing it;
 //      the caller and the workers claim bands (BandPool: one fork and join)
 //   3. per band: every fill of its list, in queue order, over the band's rows only (the edge table is read-only and
-//      shared; a small dense path is swept whole and only the band's rows are passed on)
+//      shared)
 //
 // A row's pixels see the fills in the order they were queued (one thread owns the row for the whole queue), and
 // each fill's rows come out of the same arithmetic as an unbanded sweep (docs/design.md, "Threads"), so the image

@@ -153,7 +153,7 @@ class RasterizerImpl {
   bool sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink);
   /// Whether edges_ take the dense sweep with `columns` columns (small paths: a few thousand cells).
   bool fits_dense(int columns) const;
-  /// The dense sweep of a queued fill, on one thread; only rows [y_from, y_to) reach the sink.
+  /// The dense sweep of rows [y_from, y_to) of a queued fill, on one thread.
   static void sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s);
   void bucket_edges(bool by_sample_row);
   void add_edge(Point top, Point bottom, int winding);

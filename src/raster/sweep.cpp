@@ -147,35 +147,17 @@ bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, i
   return true;
 }
 
-namespace {
-
-// Passes on the calls of rows [y_from, y_to) only: a queued dense fill is swept whole by every band it crosses.
-class RowWindow final : public CoverageSink {
- public:
-  RowWindow(CoverageSink& sink, int y_from, int y_to) : sink_(sink), y_from_(y_from), y_to_(y_to) {}
-  void span(int y, int x0, int x1, float coverage) override {
-    if (y >= y_from_ && y < y_to_) sink_.span(y, x0, x1, coverage);
-  }
-  void row(int y, int x0, int x1, const float* coverage) override {
-    if (y >= y_from_ && y < y_to_) sink_.row(y, x0, x1, coverage);
-  }
-
- private:
-  CoverageSink& sink_;
-  int y_from_, y_to_;
-};
-
-}  // namespace
-
+// Rows [y_from, y_to) of a queued dense fill: the dense sweep over those rows alone. Each row's cells take the pieces
+// of the edges inside that row (in edge order) and its own running sum, so a block of fewer rows gives those rows'
+// bits exactly.
 void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s) {
   const auto columns = static_cast<std::size_t>(fill.columns);
-  const std::size_t cells = columns * static_cast<std::size_t>(fill.y_max - fill.y_min);
+  const std::size_t cells = columns * static_cast<std::size_t>(y_to - y_from);
   if (s.dense_block.size() < cells) s.dense_block.assign(cells, 0.0);
   if (s.coverage.size() < columns) s.coverage.resize(columns);
-  RowWindow window(*fill.sink, y_from, y_to);
   with_rule(fill.rule, [&](auto r) {
-    sweep_dense_rows<decltype(r)::value>(fill.edges, fill.y_min, fill.y_max, fill.x_base, fill.columns, fill.width,
-                                         s.dense_block.data(), s.coverage.data(), window);
+    sweep_dense_rows<decltype(r)::value>(fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width,
+                                         s.dense_block.data(), s.coverage.data(), *fill.sink);
   });
 }
 
