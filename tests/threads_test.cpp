@@ -432,6 +432,16 @@ TEST(Threads, QueueWaitsForFlushAndTinyFillsAreDrawnAtOnce) {
   EXPECT_FALSE(image.data == with_tiny.data);
   EXPECT_EQ(image.pixel(10, 12)[0], 255);  // inside the red triangle
   EXPECT_EQ(image.pixel(10, 12)[1], 0);
+
+  // A borrowed sink that gives no copy of itself (CoverageSink::clone) is drawn at once.
+  Polylines lines;
+  flatten(big_triangle(), Affine{}, FlattenOptions{}, lines);
+  Rasterizer r;
+  r.set_threads(2);
+  CallRecorder recorder;
+  r.fill_queued(lines, FillRule::NonZero, AntiAlias::Analytic, kSide, kSide, recorder);
+  EXPECT_EQ(r.queued_fills(), 0u);
+  EXPECT_FALSE(recorder.rows.empty());
 }
 
 // set_threads and the destructor run what is queued; a queue past its memory budget runs by itself. Every case

@@ -77,6 +77,9 @@ class CoverageSink {
   /// each band, and no two threads ever get the same row. Sinks that keep state across calls answer false (the
   /// default) and get every call on the caller's thread, in order.
   virtual bool takes_concurrent_rows() const { return false; }
+  /// A copy of this sink that can be kept and called later (Rasterizer::fill_queued keeps one for each fill it
+  /// queues), or null (the default) for a sink that cannot be copied so: fills into it are drawn at once.
+  virtual std::unique_ptr<CoverageSink> clone() const { return nullptr; }
 };
 
 /// A device-space line segment, stored top to bottom (y0 < y1), with the direction of the original segment.
@@ -172,11 +175,15 @@ class Rasterizer {
   ///
   /// The rasterizer owns `sink` until its fill has run. Queued: fills whose sink takes concurrent rows, in every
   /// mode but Exact, under every rule but NonExterior; the others (and every fill without threads) are drawn at
-  /// once, after what is queued. Whatever the sinks write (the image) must not be read or written otherwise before
-  /// flush(); fill(), set_threads() and the destructor flush first, and the queue runs by itself when it holds more
-  /// than a memory budget (16 MiB of edge tables).
+  /// once, after what is queued, as are tiny fills with little queued before them (queueing would cost more than
+  /// it saves). Whatever the sinks write (the image) must not be read or written otherwise before flush(); fill(),
+  /// set_threads() and the destructor flush first, and the queue runs by itself when it holds more than a memory
+  /// budget (16 MiB of edge tables).
   void fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
                    std::unique_ptr<CoverageSink> sink);
+  /// As above with a borrowed sink: a fill that waits keeps sink.clone() (a sink that gives none is drawn at once);
+  /// one drawn at once uses `sink` itself, so no copy is made for it.
+  void fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
   /// Runs the queued fills (nothing when none is queued).
   void flush();
   /// Fills waiting for flush() (for tests and tools).

@@ -23,6 +23,8 @@ class SolidCompositor final : public CoverageSink {
   void row(int y, int x0, int x1, const float* coverage) override;
   /// Rows are independent pixels and nothing changes between calls.
   bool takes_concurrent_rows() const override { return true; }
+  /// A copy drawing the same colour onto the same image.
+  std::unique_ptr<CoverageSink> clone() const override { return std::make_unique<SolidCompositor>(*this); }
 
  private:
   void span8(int y, int x0, int x1, float coverage);
@@ -95,10 +97,14 @@ class Renderer {
   /// queue until flush() (Rasterizer::fill_queued: which fills queue, and why the pixels are the same).
   void fill(const Path& path, const Affine& transform, const FillOptions& options, int width, int height,
             std::unique_ptr<CoverageSink> sink);
+  /// As fill() above with a borrowed sink: a fill that waits keeps sink.clone(); a sink that gives none is drawn at
+  /// once (Rasterizer::fill_queued).
+  void fill_queued(const Path& path, const Affine& transform, const FillOptions& options, int width, int height,
+                   CoverageSink& sink);
 
   /// Convenience for tools and tests: fills `path`, mapped by `transform`, with one solid `color` source-over onto
-  /// `image` (a SolidCompositor). With threads the fill is queued (the overload above): call flush() before
-  /// reading `image`. Drawing code with paints, operators or clips uses fill() with its own compositor (or the
+  /// `image` (a SolidCompositor). With threads the fill is queued (fill_queued): call flush() before reading
+  /// `image`. Drawing code with paints, operators or clips uses fill() with its own compositor (or the
   /// Canvas).
   template <class T>
   void fill(BasicImage<T>& image, const Path& path, const Affine& transform, Color color, const FillOptions& options);

@@ -38,6 +38,13 @@ void Renderer::fill(const Path& path, const Affine& transform, const FillOptions
   rasterizer_.fill_queued(lines, options.rule, options.aa, width, height, std::move(sink));
 }
 
+void Renderer::fill_queued(const Path& path, const Affine& transform, const FillOptions& options, int width,
+                           int height, CoverageSink& sink) {
+  if (path.empty() || width <= 0 || height <= 0) return;
+  const Polylines& lines = flatten_for_fill(path, transform, options.tolerance, width, height);
+  rasterizer_.fill_queued(lines, options.rule, options.aa, width, height, sink);
+}
+
 void Renderer::mask(const std::uint8_t* mask, int mask_width, int mask_height, std::ptrdiff_t stride, int x, int y,
                     int width, int height, CoverageSink& sink) {
   flush();  // painter's order with queued fills
@@ -64,12 +71,8 @@ template <class T>
 void Renderer::fill(BasicImage<T>& image, const Path& path, const Affine& transform, Color color,
                     const FillOptions& options) {
   if (!(color.a > 0) || path.empty()) return;  // invisible: no work at all
-  if (threads() > 1) {
-    fill(path, transform, options, image.width, image.height, std::make_unique<SolidCompositor<T>>(image, color));
-    return;
-  }
   SolidCompositor<T> compositor(image, color);
-  fill(path, transform, options, image.width, image.height, compositor);
+  fill_queued(path, transform, options, image.width, image.height, compositor);
 }
 
 template void Renderer::fill(Image&, const Path&, const Affine&, Color, const FillOptions&);

@@ -71,12 +71,11 @@ std::size_t QueuedFill::bytes() const {
 }
 
 void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
-                                 std::unique_ptr<CoverageSink> sink) {
-  if (!sink) return;
+                                 CoverageSink& sink, std::unique_ptr<CoverageSink> owned) {
   // What the queue does not hold is drawn now (after what is queued, so the order stays): without threads, for a
   // sink that wants its calls in order, and for the two modes that resolve the whole arrangement before a row.
-  if (!pool_ || !sink->takes_concurrent_rows() || rule == FillRule::NonExterior || aa == AntiAlias::Exact) {
-    fill(lines, rule, aa, width, height, *sink);
+  if (!pool_ || !sink.takes_concurrent_rows() || rule == FillRule::NonExterior || aa == AntiAlias::Exact) {
+    fill(lines, rule, aa, width, height, sink);
     return;
   }
   if (width <= 0 || height <= 0) return;
@@ -94,7 +93,7 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
   if (recorded && draw_small_now &&
       static_cast<double>(q.recording.pixels()) / kRecordedPixelsPerUnit < kMinQueuedFillWork) {
     flush();
-    q.recording.replay(q.recording.y_min(), q.recording.y_max(), *sink);
+    q.recording.replay(q.recording.y_min(), q.recording.y_max(), sink);
     return;
   }
   if (!recorded) {
@@ -103,7 +102,7 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
     q.work = band_work();
     if (draw_small_now && q.work < kMinQueuedFillWork) {
       flush();
-      sweep_edges(rule, aa, width, *sink);
+      sweep_edges(rule, aa, width, sink);
       return;
     }
     if (sample_pattern(aa).grid > 0) {
@@ -121,8 +120,19 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
       }
     }
   }
+  if (recorded && q.recording.empty()) return;  // nothing visible
+  // The sink to keep: the one handed over, or a copy (made only now that the fill really waits).
+  q.sink = owned ? std::move(owned) : sink.clone();
+  if (!q.sink) {  // a sink that cannot be kept: drawn now, after the queue
+    flush();
+    if (recorded) {
+      q.recording.replay(q.recording.y_min(), q.recording.y_max(), sink);
+    } else {
+      sweep_edges(rule, aa, width, sink);
+    }
+    return;
+  }
   if (recorded) {
-    if (q.recording.empty()) return;  // nothing visible
     q.kind = QueuedFill::Kind::Recorded;
     q.y_min = q.recording.y_min();
     q.y_max = q.recording.y_max();
@@ -143,7 +153,6 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
       q.bucket_start.clear();
     }
   }
-  q.sink = std::move(sink);
   ++queued_;
   queued_bytes_ += q.bytes();
   queued_work_ += q.work;

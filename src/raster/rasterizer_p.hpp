@@ -95,9 +95,10 @@ class RasterizerImpl {
   int threads() const { return pool_ ? pool_->threads() : 1; }
   int last_fill_bands_ = 1;
 
-  /// Rasterizer::fill_queued / flush (fill_queue.cpp).
-  void fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
-                   std::unique_ptr<CoverageSink> sink);
+  /// Rasterizer::fill_queued / flush (fill_queue.cpp): `sink` draws what is drawn at once; a queued fill keeps
+  /// `owned` (when given) or sink.clone() (none: drawn at once).
+  void fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink,
+                   std::unique_ptr<CoverageSink> owned);
   void flush();
   std::size_t queued_fills() const { return queued_; }
   int last_flush_bands_ = 0;

@@ -364,7 +364,13 @@ int Rasterizer::threads() const { return impl_->threads(); }
 int Rasterizer::last_fill_bands() const { return impl_->last_fill_bands_; }
 void Rasterizer::fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
                              std::unique_ptr<CoverageSink> sink) {
-  impl_->fill_queued(lines, rule, aa, width, height, std::move(sink));
+  if (!sink) return;
+  CoverageSink& now = *sink;  // before the pointer moves (argument order is unspecified)
+  impl_->fill_queued(lines, rule, aa, width, height, now, std::move(sink));
+}
+void Rasterizer::fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
+                             CoverageSink& sink) {
+  impl_->fill_queued(lines, rule, aa, width, height, sink, nullptr);
 }
 void Rasterizer::flush() { impl_->flush(); }
 std::size_t Rasterizer::queued_fills() const { return impl_->queued_fills(); }
