@@ -406,9 +406,9 @@ Path big_triangle() {
   return p;
 }
 
-// A queued fill changes no pixel until flush(); a tiny fill with little queued before it is drawn at once (queueing
-// it would cost more than it saves), after what was queued.
-TEST(Threads, QueueWaitsForFlushAndTinyFillsAreDrawnAtOnce) {
+// A queued fill changes no pixel until flush(); a small fill with nothing queued before it is drawn at once
+// (queueing it would cost more than it saves), after a large one it waits too.
+TEST(Threads, QueueWaitsForFlushAndSmallFillsAreDrawnAtOnce) {
   Image image(kSide, kSide);
   image.clear(Color{1, 1, 1, 1});
   const Image white = image;
@@ -426,6 +426,8 @@ TEST(Threads, QueueWaitsForFlushAndTinyFillsAreDrawnAtOnce) {
   const Image with_tiny = image;
   renderer.fill(image, big_triangle(), Affine{}, Color{1, 0, 0, 1}, options);
   EXPECT_EQ(renderer.rasterizer().queued_fills(), 1u);
+  renderer.fill(image, tiny, Affine::translate(100, 100), Color{0, 0, 1, 1}, options);
+  EXPECT_EQ(renderer.rasterizer().queued_fills(), 2u);
   EXPECT_TRUE(image.data == with_tiny.data);
   renderer.flush();
   EXPECT_EQ(renderer.rasterizer().queued_fills(), 0u);

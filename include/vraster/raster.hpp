@@ -175,8 +175,8 @@ class Rasterizer {
   ///
   /// The rasterizer owns `sink` until its fill has run. Queued: fills whose sink takes concurrent rows, in every
   /// mode but Exact, under every rule but NonExterior; the others (and every fill without threads) are drawn at
-  /// once, after what is queued, as are tiny fills with little queued before them (queueing would cost more than
-  /// it saves). Whatever the sinks write (the image) must not be read or written otherwise before flush(); fill(),
+  /// once, after what is queued, as are small fills with nothing queued before them (queueing would cost more
+  /// than it saves; once a large fill waits, small ones join it). Whatever the sinks write (the image) must not be read or written otherwise before flush(); fill(),
   /// set_threads() and the destructor flush first, and the queue runs by itself when it holds more than a memory
   /// budget (16 MiB of edge tables).
   void fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,

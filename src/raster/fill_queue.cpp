@@ -2,7 +2,7 @@
 //
 //   1. fill_queued, on the caller's thread: flatten (the caller) -> build_edges -> bucket_edges, then the edge table
 //      moves into a QueuedFill (a rectangle's few distinct rows are computed at once into a CoverageRecording).
-//      Tiny fills with little queued before them are drawn at once instead.
+//      Small fills with nothing queued before them are drawn at once instead.
 //   2. flush: rows [lowest fill top, highest fill bottom) cut into bands, each with the list of fills crossing it;
 //      the caller and the workers claim bands (BandPool: one fork and join)
 //   3. per band: every fill of its list, in queue order, over the band's rows only (the edge table is read-only and
@@ -24,10 +24,11 @@ namespace {
 // thin that every band repeats much set-up (each band starts the active list of every fill crossing its top).
 constexpr int kQueueBandsPerThread = 8;
 constexpr int kQueueMinBandRows = 8;
-// A queue of less work than this (band_work's units, about 10 ns each) is run on the caller's thread alone.
-constexpr double kMinQueueWork = 800;
-// A fill of less work than this, with nothing queued before it, is drawn at once on the caller's thread.
-constexpr double kMinQueuedFillWork = 16;
+// A fill of less work than this (band_work's units, about 10 ns each; the threshold of banding a fill alone) is
+// drawn at once on the caller's thread when nothing is queued: queued, a small fill costs 5-15 % more on one
+// thread (its edges are stored and read back cold, its sink copied), which a frame of small fills only would not
+// win back. Once a large fill has started a queue, small ones join it (the order must hold).
+constexpr double kMinQueuedFillWork = 800;
 // Recorded fills: composited pixels per unit of work, as band_work counts the area inside.
 constexpr double kRecordedPixelsPerUnit = 16;
 // Memory the queue may hold (edge tables and recordings) before fill_queued runs it.
@@ -85,14 +86,10 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
   q.aa = aa;
   q.width = width;
   q.recording.clear();
-  // The choices of fill(), made now. A fill too small to gain from another thread is drawn at once when what is
-  // queued before it is small too (that runs first, on this thread): queueing tiny shapes one after the other
-  // would cost more than it saves.
-  const bool draw_small_now = queued_work_ < kMinQueueWork;
+  // The choices of fill(), made now. A small fill with nothing queued before it is drawn at once.
   bool recorded = fill_rect(lines, rule, aa, width, height, q.recording);
-  if (recorded && draw_small_now &&
+  if (recorded && queued_ == 0 &&
       static_cast<double>(q.recording.pixels()) / kRecordedPixelsPerUnit < kMinQueuedFillWork) {
-    flush();
     q.recording.replay(q.recording.y_min(), q.recording.y_max(), sink);
     return;
   }
@@ -100,8 +97,7 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
     build_edges(lines, width, height);
     if (edges_.empty()) return;
     q.work = band_work();
-    if (draw_small_now && q.work < kMinQueuedFillWork) {
-      flush();
+    if (queued_ == 0 && q.work < kMinQueuedFillWork) {
       sweep_edges(rule, aa, width, sink);
       return;
     }
@@ -194,7 +190,7 @@ void RasterizerImpl::flush() {
   }
   const int rows = bottom - top;
   int bands = 1;
-  if (pool_ && queued_work_ >= kMinQueueWork) {
+  if (pool_ && queued_work_ >= kMinQueuedFillWork) {  // (a fill of this much would be banded alone)
     bands = std::clamp(std::min(pool_->threads() * kQueueBandsPerThread, rows / kQueueMinBandRows), 1,
                        BandPool::kMaxBands);
   }
