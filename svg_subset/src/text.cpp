@@ -995,10 +995,9 @@ class TextBuilder {
     }
     auto append = [&](std::vector<Node>& nodes) {
       for (Node& n : nodes) {
-        if (PathNode* path = std::get_if<PathNode>(&n.value)) {
-          if (!path->fill && !path->stroke) continue;
-          if (have_box) path->paint_box = box;
-        }
+        // Unpainted glyphs (fill and stroke none, visibility hidden) stay as paths without paint: they draw
+        // nothing but count in the bounding box of the groups around the text, as any hidden shape does.
+        if (PathNode* path = std::get_if<PathNode>(&n.value); path && have_box) path->paint_box = box;
         out.children.push_back(std::move(n));
       }
     };
