@@ -20,6 +20,7 @@ packages=(
   fonts-hosny-amiri                    # Amiri (Arabic joining)
   fonts-cantarell                      # Cantarell (OpenType with CFF outlines)
   fonts-wqy-microhei                   # WenQuanYi Micro Hei (a .ttc collection of two faces)
+  fonts-noto-color-emoji               # Noto Color Emoji (CBDT colour bitmap glyphs)
 )
 
 # The fuzz targets need clang and its libFuzzer runtime.

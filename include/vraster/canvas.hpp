@@ -152,6 +152,9 @@ class Canvas {
   void draw_image(const Image& image, double dx, double dy, double dw, double dh);
   void draw_image(const Image& image, double sx, double sy, double sw, double sh, double dx, double dy, double dw,
                   double dh);
+  /// The whole of a shared image into the destination rectangle: a recording canvas keeps the pointer instead of
+  /// a copy (an image drawn many times, such as a colour glyph, is stored once).
+  void draw_image(std::shared_ptr<const Image> image, double dx, double dy, double dw, double dh);
   /// Paints the current fill paint through an 8-bit coverage mask whose pixel (0, 0) lands on device pixel
   /// (x, y), untransformed (cached glyphs).
   void fill_mask(const std::uint8_t* mask, int width, int height, std::ptrdiff_t stride, int x, int y);

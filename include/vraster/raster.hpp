@@ -136,7 +136,7 @@ class Rasterizer {
   /// own rows into a dense block (cheaper for glyph-sized paths; same coverage). 0 turns it off (tests use that
   /// to compare both paths).
   void set_dense_limit(std::int64_t cells);
-  static constexpr std::int64_t kDefaultDenseLimit = 8192;
+  static constexpr std::int64_t kDefaultDenseLimit = 32768;
 
   /// Exact fills of paths whose winding is only ever 0 and one other value take the analytic sweep, which is exact
   /// for them (same coverage up to round-off). false sends every exact fill through the boundary sweep (tests and

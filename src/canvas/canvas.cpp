@@ -430,6 +430,14 @@ void Canvas::draw_image(const Image& image, double sx, double sy, double sw, dou
   impl_->draw_image(image, Rect{sx, sy, sx + sw, sy + sh}, Rect{dx, dy, dx + dw, dy + dh});
 }
 
+void Canvas::draw_image(std::shared_ptr<const Image> image, double dx, double dy, double dw, double dh) {
+  if (!image || !finite({dx, dy, dw, dh})) return;
+  if (image->width <= 0 || image->height <= 0 || dw == 0 || dh == 0) return;
+  const Rect src{0, 0, double(image->width), double(image->height)};
+  const Image& pixels = *image;  // before the pointer moves (argument order is unspecified)
+  impl_->draw_image(pixels, src, Rect{dx, dy, dx + dw, dy + dh}, std::move(image));
+}
+
 void Canvas::begin_layer(const LayerOptions& options) { impl_->begin_layer(options); }
 void Canvas::end_layer() { impl_->end_layer(); }
 

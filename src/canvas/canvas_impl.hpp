@@ -151,7 +151,8 @@ struct Canvas::Impl {
   IntRect make_clip_mask(canvas_detail::ClipMask& mask, const IntRect& area, FillRule rule);
   void begin_layer(const LayerOptions& options);
   void end_layer(bool composite = true);  ///< false: the layer is dropped without a trace
-  void draw_image(const Image& image, Rect src, Rect dst);
+  /// `shared`: the same image when the caller shares it (recorded by reference), else null (recorded as a copy).
+  void draw_image(const Image& image, Rect src, Rect dst, std::shared_ptr<const Image> shared = nullptr);
   void draw_mesh(const Mesh& mesh, const Affine& to_device, MeshOptions options);
   template <class T>
   void draw_mesh_onto_target(const Mesh& device_mesh, const MeshOptions& options);

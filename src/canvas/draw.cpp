@@ -637,10 +637,10 @@ void Canvas::Impl::draw_mesh_onto_target(const Mesh& device_mesh, const MeshOpti
 
 // ---- images ----
 
-void Canvas::Impl::draw_image(const Image& image, Rect src, Rect dst) {
+void Canvas::Impl::draw_image(const Image& image, Rect src, Rect dst, std::shared_ptr<const Image> shared) {
   if (recording) {
     SceneCommand& c = record(SceneCommand::Kind::DrawImage);
-    c.image = std::make_shared<const Image>(image);
+    c.image = shared ? std::move(shared) : std::make_shared<const Image>(image);
     c.src = src;
     c.dst = dst;
     return;

@@ -24,29 +24,7 @@ using detail::accumulate_piece;
 using detail::coverage_of;
 using detail::mark_cells;
 using detail::resolve_row;
-using detail::snapped;
 using detail::with_rule;
-
-// coverage_of without data-dependent branches (same values), for loops the compiler should vectorize.
-template <FillRule R>
-inline float coverage_of_branchless(double s) {
-  double c;
-  if constexpr (R == FillRule::EvenOdd) {
-    double a = std::abs(s);
-    a -= 2.0 * std::floor(a * 0.5);  // exact: subtracts 0 below 2, where coverage_of skips it
-    c = a > 1.0 ? 2.0 - a : a;
-  } else if constexpr (R == FillRule::Positive) {
-    c = std::clamp(s, 0.0, 1.0);
-  } else if constexpr (R == FillRule::Negative) {
-    c = std::clamp(-s, 0.0, 1.0);
-  } else if constexpr (R == FillRule::AbsGeq2) {
-    c = std::clamp(std::abs(s) - 1.0, 0.0, 1.0);
-  } else {
-    const double a = std::abs(s);
-    c = a < 1.0 ? a : 1.0;
-  }
-  return snapped(c);
-}
 
 // The row loop, compiled for AVX2 and for any x86-64 (picked at load time); no FMA, so both give the same bits.
 // Sweeps rows [y_from, y_to) starting from `active` (start_active); every row's arithmetic is a function of the
@@ -106,16 +84,8 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
   const int visible = std::min(columns, width - x_base);  // the last cells may lie at or right of the image edge
   for (int y = y_min; y < y_max; ++y) {
     double* row = block + static_cast<std::size_t>(y - y_min) * columns;
-    // Two passes: the running sum (a dependency chain), then coverage without branches, which vectorizes.
     double sum = 0;
-    for (int c = 0; c < columns; ++c) {
-      sum += row[c];
-      row[c] = sum;
-    }
-    for (int c = 0; c < columns; ++c) {
-      cov[c] = coverage_of_branchless<R>(row[c]);
-      row[c] = 0;
-    }
+    detail::sweep_cells<R>(row, cov, columns, sum);
     int a = 0, b = visible;
     while (a < b && cov[a] == 0) ++a;
     while (b > a && cov[b - 1] == 0) --b;

@@ -598,7 +598,7 @@ class Drawer {
       r.add_rect(n.clip);
       canvas_.clip(r, FillRule::NonZero);
       canvas_.set_image_smoothing(n.smooth);
-      canvas_.draw_image(*n.image, n.dest.x0, n.dest.y0, n.dest.width(), n.dest.height());
+      canvas_.draw_image(n.image, n.dest.x0, n.dest.y0, n.dest.width(), n.dest.height());
       canvas_.restore();
     } catch (const Error& e) {
       throw ParseError(shared_.file, n.line, n.column, std::string("cannot draw this image: ") + e.what());

@@ -922,9 +922,28 @@ class TextBuilder {
     return out;
   }
 
+  /// A colour bitmap glyph (CBDT, sbix) as an image in a group that places it like the glyph's outline, scaled
+  /// from its strike to the glyph's size. It takes the place of the glyph's fill: drawn when the element has a
+  /// fill, with its fill-opacity.
+  std::optional<Node> bitmap_node(const Placed& p, const text::ColorBitmap& bitmap) const {
+    const SpanStyle& s = element(p.element).style;
+    if (!s.fill || s.fill->paint.kind == Paint::Kind::None || !(bitmap.ppem > 0)) return std::nullopt;
+    ImageNode image;
+    image.image = bitmap.image;
+    image.view = Rect{bitmap.left, bitmap.top, bitmap.left + bitmap.image->width, bitmap.top + bitmap.image->height};
+    image.dest = image.clip = image.view;
+    std::tie(image.line, image.column) = host_.position(text_node_);
+    Group g;
+    const double k = p.size / bitmap.ppem;
+    g.transform = placement(p) * Affine::scale(k * p.stretch, k);
+    g.opacity = s.fill->paint.opacity;
+    g.children.push_back(Node{std::move(image)});
+    return Node{std::move(g)};
+  }
+
   void emit(Group& out) {
-    // Glyph outlines, one path per stretch of glyphs of one element.
-    std::vector<PathNode> glyph_nodes;
+    // Glyph outlines, one path per stretch of glyphs of one element; colour bitmap glyphs as images between them.
+    std::vector<Node> glyph_nodes;
     Path current;
     int current_element = -1;
     Rect box;
@@ -940,7 +959,7 @@ class TextBuilder {
     };
     auto flush = [&] {
       if (current_element >= 0 && !current.empty()) {
-        glyph_nodes.push_back(node_for(current_element, std::move(current)));
+        glyph_nodes.push_back(Node{node_for(current_element, std::move(current))});
       }
       current = Path();
     };
@@ -950,12 +969,17 @@ class TextBuilder {
         current_element = p.element;
       }
       include(glyph_cell(p));
+      if (const text::ColorBitmap* bitmap = p.font->color_bitmap(p.glyph)) {
+        flush();  // in text order between the outlines before and after it
+        if (std::optional<Node> image = bitmap_node(p, *bitmap)) glyph_nodes.push_back(std::move(*image));
+        continue;
+      }
       const Path& outline = p.font->outline_units(p.glyph);
       if (!outline.empty()) current.add_path(outline.transformed(glyph_transform(p)));
     }
     flush();
     // Decorations: from each element that declares one, with that element's paint.
-    std::vector<PathNode> below, above;
+    std::vector<Node> below, above;
     index_glyphs(0);
     for (std::size_t e = 0; e < elements_.size(); ++e) {
       // Decorations of elements around <text> are drawn as the text's own (with its paint).
@@ -966,14 +990,15 @@ class TextBuilder {
         Path rects = decoration(static_cast<int>(e), kind);
         if (rects.empty()) continue;
         include(rects);
-        (kind == TextProperties::kLineThrough ? above : below).push_back(node_for(static_cast<int>(e), std::move(rects)));
+        (kind == TextProperties::kLineThrough ? above : below).push_back(Node{node_for(static_cast<int>(e), std::move(rects))});
       }
     }
-    auto append = [&](std::vector<PathNode>& nodes) {
-      for (PathNode& n : nodes) {
-        if (!n.fill && !n.stroke) continue;
-        if (have_box) n.paint_box = box;
-        out.children.push_back(Node{std::move(n)});
+    auto append = [&](std::vector<Node>& nodes) {
+      for (Node& n : nodes) {
+        // Unpainted glyphs (fill and stroke none, visibility hidden) stay as paths without paint: they draw
+        // nothing but count in the bounding box of the groups around the text, as any hidden shape does.
+        if (PathNode* path = std::get_if<PathNode>(&n.value); path && have_box) path->paint_box = box;
+        out.children.push_back(std::move(n));
       }
     };
     append(below);

@@ -114,6 +114,38 @@ int on_cubic(const FT_Vector* c1, const FT_Vector* c2, const FT_Vector* to, void
   return 0;
 }
 
+/// The lower-left corner of the box of a glyph's outline points in font units (y up), as HarfBuzz reads the
+/// glyf / CFF data (FreeType does not load outlines of a font with an sbix table); nothing without an outline.
+std::optional<Point> outline_corner(hb_font_t* font, std::uint32_t glyph) {
+  struct Corner {
+    double x = INFINITY, y = INFINITY;
+    void add(float px, float py) {
+      x = std::min(x, double(px));
+      y = std::min(y, double(py));
+    }
+  } corner;
+  hb_draw_funcs_t* funcs = hb_draw_funcs_create();
+  auto move = [](hb_draw_funcs_t*, void* c, hb_draw_state_t*, float x, float y, void*) { static_cast<Corner*>(c)->add(x, y); };
+  auto quad = [](hb_draw_funcs_t*, void* c, hb_draw_state_t*, float cx, float cy, float x, float y, void*) {
+    static_cast<Corner*>(c)->add(cx, cy);
+    static_cast<Corner*>(c)->add(x, y);
+  };
+  auto cubic = [](hb_draw_funcs_t*, void* c, hb_draw_state_t*, float c1x, float c1y, float c2x, float c2y, float x,
+                  float y, void*) {
+    static_cast<Corner*>(c)->add(c1x, c1y);
+    static_cast<Corner*>(c)->add(c2x, c2y);
+    static_cast<Corner*>(c)->add(x, y);
+  };
+  hb_draw_funcs_set_move_to_func(funcs, move, nullptr, nullptr);
+  hb_draw_funcs_set_line_to_func(funcs, move, nullptr, nullptr);
+  hb_draw_funcs_set_quadratic_to_func(funcs, quad, nullptr, nullptr);
+  hb_draw_funcs_set_cubic_to_func(funcs, cubic, nullptr, nullptr);
+  hb_font_get_glyph_shape(font, glyph, funcs, &corner);
+  hb_draw_funcs_destroy(funcs);
+  if (!std::isfinite(corner.x) || !std::isfinite(corner.y)) return std::nullopt;
+  return Point{corner.x, corner.y};
+}
+
 }  // namespace
 
 void check_font_size(double size) {
@@ -182,6 +214,14 @@ std::shared_ptr<Font> Font::open(std::unique_ptr<Impl> impl, int face_index) {
   hb_face_destroy(face);
   const int upem = impl->face->units_per_EM ? impl->face->units_per_EM : 1000;
   hb_font_set_scale(impl->hb, upem, upem);
+  if (FT_HAS_COLOR(impl->face)) {
+    for (int i = 0; i < impl->face->num_fixed_sizes; ++i) {
+      const FT_Bitmap_Size& strike = impl->face->available_sizes[i];
+      if (strike.y_ppem > 0 &&
+          (impl->color_strike < 0 || strike.y_ppem > impl->face->available_sizes[impl->color_strike].y_ppem))
+        impl->color_strike = i;
+    }
+  }
   impl->id = next_font_id.fetch_add(1);
   return std::shared_ptr<Font>(new Font(std::move(impl)));
 }
@@ -219,6 +259,61 @@ int Font::units_per_em() const { return impl_->face->units_per_EM ? impl_->face-
 int Font::glyph_count() const { return static_cast<int>(impl_->face->num_glyphs); }
 int Font::face_count() const { return static_cast<int>(impl_->face->num_faces); }
 bool Font::has_outlines() const { return FT_IS_SCALABLE(impl_->face); }
+bool Font::has_color_bitmaps() const { return impl_->color_strike >= 0; }
+
+const ColorBitmap* Font::color_bitmap(std::uint32_t glyph) const {
+  Impl& im = *impl_;
+  if (im.color_strike < 0 || glyph >= static_cast<std::uint32_t>(im.face->num_glyphs)) return nullptr;
+  auto it = im.color_bitmaps.find(glyph);
+  if (it == im.color_bitmaps.end()) it = im.color_bitmaps.emplace(glyph, im.load_color_bitmap(glyph)).first;
+  return it->second ? &*it->second : nullptr;
+}
+
+std::optional<ColorBitmap> Font::Impl::load_color_bitmap(std::uint32_t glyph) {
+  constexpr unsigned kMaxSide = 4096;
+  sized_at = -1;  // the face's size is the strike's from here on (hinted loads set theirs again)
+  // A glyph without a bitmap in the strike (a space, say) or with undecodable image data simply has none: the
+  // outline, if any, is drawn instead.
+  if (FT_Select_Size(face, color_strike) != 0 || FT_Load_Glyph(face, glyph, FT_LOAD_COLOR) != 0) return std::nullopt;
+  const FT_GlyphSlot slot = face->glyph;
+  const FT_Bitmap& bitmap = slot->bitmap;
+  if (slot->format != FT_GLYPH_FORMAT_BITMAP || bitmap.pixel_mode != FT_PIXEL_MODE_BGRA || bitmap.width == 0 ||
+      bitmap.rows == 0 || bitmap.width > kMaxSide || bitmap.rows > kMaxSide || !bitmap.buffer)
+    return std::nullopt;
+  const unsigned row_bytes = static_cast<unsigned>(std::abs(bitmap.pitch));
+  if (row_bytes < bitmap.width * 4) return std::nullopt;
+  auto image = std::make_shared<Image>(static_cast<int>(bitmap.width), static_cast<int>(bitmap.rows));
+  for (unsigned y = 0; y < bitmap.rows; ++y) {
+    // A negative pitch stores the rows bottom-up.
+    const std::uint8_t* row = bitmap.buffer + static_cast<std::size_t>(bitmap.pitch < 0 ? bitmap.rows - 1 - y : y) * row_bytes;
+    for (unsigned x = 0; x < bitmap.width; ++x) {
+      const std::uint8_t* bgra = row + x * 4;
+      std::uint8_t* rgba = image->pixel(static_cast<int>(x), static_cast<int>(y));
+      const std::uint8_t a = bgra[3];
+      // Premultiplied already (FreeType's BGRA); a channel above alpha is corrupt data, clamped.
+      rgba[0] = std::min(bgra[2], a);
+      rgba[1] = std::min(bgra[1], a);
+      rgba[2] = std::min(bgra[0], a);
+      rgba[3] = a;
+    }
+  }
+  ColorBitmap out;
+  out.image = std::move(image);
+  out.ppem = face->available_sizes[color_strike].y_ppem / 64.0;
+  out.left = slot->bitmap_left;
+  out.top = -slot->bitmap_top;
+  // sbix: the table places the image at the glyph's origin, but Skia and CoreText (so the browsers) move it to
+  // where the glyph's outline would be, by the outline's left and bottom; documents are made to look right there.
+  FT_ULong sbix_length = 0;
+  if (FT_Load_Sfnt_Table(face, FT_MAKE_TAG('s', 'b', 'i', 'x'), 0, nullptr, &sbix_length) == 0) {
+    if (const std::optional<Point> corner = outline_corner(hb, glyph)) {
+      const double k = out.ppem / (face->units_per_EM ? face->units_per_EM : 1000);
+      out.left += corner->x * k;
+      out.top -= corner->y * k;
+    }
+  }
+  return out;
+}
 
 std::uint32_t Font::glyph_index(char32_t codepoint) const {
   auto it = impl_->cmap.find(codepoint);

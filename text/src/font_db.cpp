@@ -124,7 +124,9 @@ std::size_t FontDb::add_file(const std::string& path) {
         break;
       }
       count = static_cast<int>(face->num_faces);
-      if (faces_.size() < kMaxFaces && (face->face_flags & FT_FACE_FLAG_SCALABLE)) {
+      // Outline fonts, and colour bitmap fonts (CBDT, sbix: fixed sizes, drawn as images scaled to the size).
+      const bool usable = (face->face_flags & FT_FACE_FLAG_SCALABLE) || (FT_HAS_COLOR(face) && face->num_fixed_sizes > 0);
+      if (faces_.size() < kMaxFaces && usable) {
         faces_.push_back(describe(face, path, i));
         ++added;
       }
@@ -183,7 +185,7 @@ std::size_t FontDb::add_system_fonts() {
   if (!system_->config) return 0;
   FcPattern* pattern = FcPatternCreate();
   FcObjectSet* objects = FcObjectSetBuild(FC_FAMILY, FC_FILE, FC_INDEX, FC_WEIGHT, FC_SLANT, FC_WIDTH,
-                                          FC_OUTLINE, FC_VARIABLE, nullptr);
+                                          FC_OUTLINE, FC_COLOR, FC_VARIABLE, nullptr);
   FcFontSet* set = FcFontList(system_->config, pattern, objects);
   std::size_t added = 0;
   for (int i = 0; set && i < set->nfont && faces_.size() < kMaxFaces; ++i) {
@@ -193,8 +195,10 @@ std::size_t FontDb::add_system_fonts() {
     FcBool outline = FcTrue;
     if (FcPatternGetString(p, FC_FILE, 0, &file) != FcResultMatch || !file) continue;
     if (FcPatternGetString(p, FC_FAMILY, 0, &family) != FcResultMatch || !family) continue;
+    FcBool color = FcFalse;
     FcPatternGetBool(p, FC_OUTLINE, 0, &outline);
-    if (!outline) continue;
+    FcPatternGetBool(p, FC_COLOR, 0, &color);
+    if (!outline && !color) continue;  // colour bitmap fonts (CBDT, sbix) are drawn as images
     FaceInfo info;
     info.system = true;
     info.path = reinterpret_cast<const char*>(file);

@@ -6,6 +6,7 @@
 #include <hb.h>
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <unordered_map>
@@ -26,10 +27,14 @@ struct Font::Impl {
   double sized_at = -1;                  // the char size FT_Set_Char_Size last set (hinted loads)
   std::unordered_map<std::uint32_t, GlyphOutline> outlines;  // unhinted, font units, y down, with control boxes
   mutable std::unordered_map<char32_t, std::uint32_t> cmap; // code point -> glyph
+  int color_strike = -1;                 // the largest colour bitmap strike, -1: none
+  std::unordered_map<std::uint32_t, std::optional<ColorBitmap>> color_bitmaps;  // per glyph; nullopt: none
 
   ~Impl();
   /// Loads `glyph` with `flags` into face->glyph; false when FreeType refuses.
   bool load(std::uint32_t glyph, FT_Int32 flags);
+  /// Loads a glyph's image from the colour strike; nothing when it has none there.
+  std::optional<ColorBitmap> load_color_bitmap(std::uint32_t glyph);
 };
 
 /// Converts the outline in face->glyph to a Path, scaling FreeType's coordinates by (sx, sy) and flipping y.

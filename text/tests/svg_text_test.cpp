@@ -296,6 +296,31 @@ TEST(SvgText, TheTextBoxIsTheUnionOfFullGlyphCells) {
   EXPECT_LT(paths[0]->path.bounds().y1, 80 + fm.descender - 1);  // the outlines stop well above it
 }
 
+TEST(SvgText, HiddenTextCountsInItsGroupsBoundingBox) {
+  // A hidden shape draws nothing but still counts in the bounding box of its group (objectBoundingBox clip
+  // paths, masks and paints of the group refer to it); text is no exception. Unpainted text likewise.
+  const auto font = Font::load_file(system_font(kNotoSans));
+  const FontMetrics fm = font->metrics(20);
+  const double width = measure_text("vow", FontList(font), sized(20)).advance;
+  for (const char* paint : {"visibility='hidden'", "fill='none'"}) {
+    const svg::Tree tree = parse(std::string("<g><text x='10' y='80' font-family='Noto Sans' font-size='20' ") +
+                                 paint + ">vow</text><rect x='200' y='90' width='10' height='10'/></g>");
+    const auto* g = std::get_if<Group>(&tree.root.children.at(0).value);
+    ASSERT_NE(g, nullptr);
+    const auto* text = std::get_if<Group>(&g->children.at(0).value);
+    ASSERT_NE(text, nullptr);
+    ASSERT_EQ(text->children.size(), 1u) << paint;
+    const auto* glyphs = std::get_if<PathNode>(&text->children[0].value);
+    ASSERT_NE(glyphs, nullptr);
+    EXPECT_FALSE(glyphs->fill.has_value()) << paint;
+    EXPECT_FALSE(glyphs->stroke.has_value()) << paint;
+    const std::optional<Rect> box = svg::object_bounds(*g, Affine{});
+    ASSERT_TRUE(box.has_value());
+    expect_box(*box, Rect{10, 80 + fm.ascender, 210, 100}, 1e-6);
+    EXPECT_LT(10 + width, 200);  // the rectangle ends the box on the right, the text's cells on the left and top
+  }
+}
+
 TEST(SvgText, VerticalTextRunsDownWithGlyphsTurnedSideways) {
   const svg::Tree tree = parse("<text x='100' y='20' writing-mode='tb' font-family='Noto Sans' font-size='20'>"
                                "H<tspan fill='red'>H</tspan></text>");

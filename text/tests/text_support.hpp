@@ -28,6 +28,8 @@ inline constexpr SystemFont kCantarellCff{"/usr/share/fonts/opentype/cantarell/C
                                           "fonts-cantarell"};  // OpenType with CFF outlines
 inline constexpr SystemFont kWqyMicroHeiCollection{"/usr/share/fonts/truetype/wqy/wqy-microhei.ttc",
                                                    "fonts-wqy-microhei"};  // a TrueType collection of two faces
+inline constexpr SystemFont kNotoColorEmoji{"/usr/share/fonts/truetype/noto/NotoColorEmoji.ttf",
+                                            "fonts-noto-color-emoji"};  // CBDT/CBLC colour bitmaps, no outlines
 
 /// A test resource that is not there: the test fails with this message (never a crash, never a silent skip).
 struct MissingResource : std::runtime_error {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "vraster/geometry.hpp"
+#include "vraster/image.hpp"
 #include "vraster/path.hpp"
 
 namespace vraster::text {
@@ -68,6 +69,15 @@ struct GlyphOutline {
   Rect control_box;
 };
 
+/// A colour bitmap glyph (a CBDT/CBLC or sbix strike image, as FreeType's FT_LOAD_COLOR gives it). Drawn as an
+/// image: `size / ppem` user units per image pixel at font size `size`, its top-left corner at (left, top)
+/// image pixels from the pen position (y down).
+struct ColorBitmap {
+  std::shared_ptr<const Image> image;  ///< premultiplied RGBA8
+  double ppem = 0;                     ///< pixels per em of the strike it comes from
+  double left = 0, top = 0;            ///< the image's top-left corner relative to the pen position, in its pixels
+};
+
 /// One font face. Loading reads the whole file into memory (FreeType and HarfBuzz share those bytes).
 ///
 /// A Font keeps a FreeType face and caches; it is not safe to use one Font from two threads at once. Load one per
@@ -100,6 +110,13 @@ class Font {
   int glyph_count() const;
   int face_count() const;  ///< faces in the file (collections hold more than one)
   bool has_outlines() const;
+
+  /// Whether the font has colour bitmap strikes (CBDT/CBLC or sbix: FT_HAS_COLOR with fixed sizes).
+  bool has_color_bitmaps() const;
+  /// The colour bitmap of a glyph from the font's largest strike (the best quality when the image is scaled to a
+  /// font size; COLR fonts have none, their outlines are drawn), cached per glyph; null when the glyph has none
+  /// or its image cannot be decoded. Images above 4096 pixels a side are refused (null).
+  const ColorBitmap* color_bitmap(std::uint32_t glyph) const;
 
   /// The glyph for a Unicode code point, 0 (.notdef) when the font has none.
   std::uint32_t glyph_index(char32_t codepoint) const;
