@@ -100,10 +100,22 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
 
 }  // namespace
 
+// Blocks up to this many cells always take the dense sweep (glyph-sized paths); larger ones up to the dense limit
+// when they hold at most kDenseCellsPerOutline cells per unit of outline.
+constexpr std::int64_t kAlwaysDenseCells = 8192;
+constexpr double kDenseCellsPerOutline = 16;
+
 bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink) {
   if (edges_.empty() || dense_limit_ <= 0) return false;
   const std::int64_t cells = static_cast<std::int64_t>(columns) * (y_max_ - y_min_);
   if (cells > dense_limit_) return false;
+  if (cells > kAlwaysDenseCells) {
+    // A larger block pays only where edges pass through a good share of it: a thin sliver across a large box
+    // would have the dense sweep walk mostly empty cells that the row sweep skips.
+    double outline = 0;  // about the number of cells the edges touch
+    for (const Edge& e : edges_) outline += (e.y1 - e.y0) + std::abs(e.x1 - e.x0);
+    if (static_cast<double>(cells) > kDenseCellsPerOutline * outline) return false;
+  }
   if (dense_block_.size() < static_cast<std::size_t>(cells)) dense_block_.assign(static_cast<std::size_t>(cells), 0.0);
   if (row_coverage_.size() < static_cast<std::size_t>(columns)) row_coverage_.resize(static_cast<std::size_t>(columns));
   double* block = dense_block_.data();
