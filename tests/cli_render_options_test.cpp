@@ -321,6 +321,32 @@ TEST(CliBatch, EachInputBecomesDirNamePngAndFourThreadsGiveTheImagesOfOne) {
   }
 }
 
+// More files written at once than the fixed slots that name partial files for removal on a signal (64): writers
+// wait for a slot instead of going without one, and every file is still written whole.
+TEST(CliBatch, MoreWorkersThanCleanupSlotsWriteEveryFile) {
+  const std::string dir = work_dir() + "/many";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir + "/in");
+  std::string inputs;
+  for (int k = 0; k < 100; ++k) {
+    const std::string name = "many/in/r" + std::to_string(k) + ".svg";
+    const std::string path = write_file(name, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"300\" height=\"300\"><rect x=\"" +
+                         std::to_string(k) + "\" width=\"50\" height=\"50\"/></svg>");
+    inputs += " '" + path + "'";
+  }
+  std::string log;
+  ASSERT_EQ(run_vraster("render" + inputs + " -o '" + dir + "/out/' --no-system-fonts -j 100", log), 0) << log;
+  int pngs = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir + "/out")) {
+    EXPECT_EQ(entry.path().extension(), ".png") << entry.path();  // no temporary left behind
+    ++pngs;
+  }
+  EXPECT_EQ(pngs, 100);
+  const Image last = read_png(dir + "/out/r99.png");
+  EXPECT_EQ(last.pixel(120, 10)[3], 255);  // the rect of the last file, at x 99 to 149
+  EXPECT_EQ(last.pixel(150, 10)[3], 0);
+}
+
 TEST(CliBatch, CollidingOutputNamesAreRefusedBeforeAnythingIsRendered) {
   const std::string dir = work_dir() + "/collide";
   std::filesystem::remove_all(dir);

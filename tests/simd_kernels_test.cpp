@@ -1,8 +1,8 @@
-// The hand-written AVX2 kernels (the running sum of a row of cells, the 8-bit source-over loops) must give the
-// bits of their portable versions, which run where AVX2 is missing: the same picture on every machine. Each
-// test draws or composites with the portable kernels forced and without, and compares exactly. (On a machine
-// without AVX2 both runs take the portable path and the comparison holds trivially; the reference checks below
-// still apply.)
+// The hand-written AVX2 kernel (the running sum of a row of cells) must give the bits of its portable version,
+// which runs where AVX2 is missing: the same picture on every machine. Each test draws with the portable kernel
+// forced and without, and compares exactly. (On a machine without AVX2 both runs take the portable path and the
+// comparison holds trivially.) The 8-bit source-over loops (compiled for AVX2 and for any x86-64 by the compiler)
+// are checked against the rounding rule.
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -100,7 +100,7 @@ TEST(SimdKernels, FilledImagesAreTheSameBitsWithAndWithoutAvx2) {
 // Source-over with coverage and clip, per pixel, as docs/design.md states it (rounded to nearest each step).
 std::uint8_t div255(std::uint32_t x) { return static_cast<std::uint8_t>((x + 127) / 255); }
 
-TEST(SimdKernels, SourceOverRunsMatchTheRoundingRuleForEveryCase) {
+TEST(SourceOverRuns, MatchTheRoundingRuleForEveryCase) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> unit(-0.2f, 1.2f);  // coverage products outside [0, 1] are clamped
   int runs = 0;
@@ -130,13 +130,7 @@ TEST(SimdKernels, SourceOverRunsMatchTheRoundingRuleForEveryCase) {
                                                                   with_clip ? clip.data() : nullptr, n - 1 > 0 ? n - 1 : 0);
       return out;
     };
-    const std::vector<std::uint8_t> simd = run();
-    std::vector<std::uint8_t> portable;
-    {
-      PortableKernels forced;
-      portable = run();
-    }
-    ASSERT_EQ(simd, portable) << "run " << it;
+    const std::vector<std::uint8_t> out = run();
     for (int i = 0; i + 1 < n; ++i) {
       const std::uint8_t* s = &src[static_cast<std::size_t>(step) * i];
       const std::uint8_t* d = &dst[4 * (i + 1)];
@@ -147,10 +141,10 @@ TEST(SimdKernels, SourceOverRunsMatchTheRoundingRuleForEveryCase) {
       for (int ch = 0; ch < 4; ++ch) sk[ch] = div255(s[ch] * k);
       for (int ch = 0; ch < 4; ++ch) {
         const std::uint32_t r = sk[ch] + div255(d[ch] * (255u - sk[3]));
-        ASSERT_EQ(simd[4 * (i + 1) + ch], div255(d[ch] * (255 - m) + r * m)) << "run " << it << " pixel " << i;
+        ASSERT_EQ(out[4 * (i + 1) + ch], div255(d[ch] * (255 - m) + r * m)) << "run " << it << " pixel " << i;
       }
     }
-    ASSERT_EQ(std::memcmp(simd.data(), dst.data(), 4), 0);  // nothing written before the run
+    ASSERT_EQ(std::memcmp(out.data(), dst.data(), 4), 0);  // nothing written before the run
     ++runs;
   }
   EXPECT_GT(runs, 250);

@@ -132,9 +132,10 @@ class Rasterizer {
   /// The clipped edges of the last fill() (for tests and tools).
   const std::vector<Edge>& edges() const;
 
-  /// Analytic fills of paths whose box spans at most this many cells skip the edge table: each edge walks its
-  /// own rows into a dense block (cheaper for glyph-sized paths; same coverage). 0 turns it off (tests use that
-  /// to compare both paths).
+  /// Analytic fills of paths whose box spans at most this many cells may skip the edge table: each edge walks its
+  /// own rows into a dense block (cheaper for glyph-sized paths and small shapes; same coverage). Boxes over 8192
+  /// cells go dense only where the edges pass through a good share of the box. 0 turns it off (tests use that to
+  /// compare both paths).
   void set_dense_limit(std::int64_t cells);
   static constexpr std::int64_t kDefaultDenseLimit = 32768;
 

@@ -30,12 +30,10 @@ class SolidCompositor final : public CoverageSink {
   void span8(int y, int x0, int x1, float coverage);
   void row8(int y, int x0, int x1, const float* coverage);
   void span16(int y, int x0, int x1, float coverage);
-  std::uint8_t* pixels8(int x, int y) { return reinterpret_cast<std::uint8_t*>(image_.pixel(x, y)); }
 
   BasicImage<T>& image_;
   float alpha_;              // colour alpha in [0, 1]
   std::uint64_t premul_[4];  // colour premultiplied, scaled to the channel range
-  alignas(4) std::uint8_t color8_[4] = {};  // 8 bits: premul_ as the pixel the run loop reads
 };
 
 extern template class SolidCompositor<std::uint8_t>;

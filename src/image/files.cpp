@@ -15,34 +15,41 @@
 #include <csignal>
 #include <cstring>
 #include <random>
+#include <thread>
+#include <chrono>
 
 #include "vraster/error.hpp"
 
 namespace vraster {
 namespace {
 
-constexpr int kCleanupSlots = 16;
+constexpr int kCleanupSlots = 64;
 constexpr std::size_t kMaxPathBytes = 4096;
 
 struct CleanupSlot {
   std::atomic<int> state{0};  // 0 free, 1 being filled, 2 holds a path to remove on a signal
   char path[kMaxPathBytes];
 };
-CleanupSlot g_slots[kCleanupSlots];
+CleanupSlot g_slots[kCleanupSlots];  // zero pages until used: 256 KiB of address space
 
-/// Stores `path` in a free slot; -1 when all are taken or the path is too long (the file then just is not
-/// removed on a signal).
-int register_for_cleanup(const std::string& path) {
-  if (path.size() + 1 > kMaxPathBytes) return -1;
-  for (int i = 0; i < kCleanupSlots; ++i) {
-    int expected = 0;
-    if (g_slots[i].state.compare_exchange_strong(expected, 1)) {
-      std::memcpy(g_slots[i].path, path.c_str(), path.size() + 1);
-      g_slots[i].state.store(2);
-      return i;
+/// Takes a free slot for a temporary about to be created (it holds no path yet, so a signal removes nothing).
+/// When every slot is taken (more files being written at once than slots, e.g. `vraster render -j 100`), waits
+/// for one to free: a partial file must never be left without its cleanup.
+int reserve_cleanup_slot() {
+  for (;;) {
+    for (int i = 0; i < kCleanupSlots; ++i) {
+      int expected = 0;
+      if (g_slots[i].state.compare_exchange_strong(expected, 1)) return i;
     }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  return -1;
+}
+
+/// From now on a signal removes `path` (a file this process created); too long a path is just not removed.
+void arm_cleanup_slot(int slot, const std::string& path) {
+  if (path.size() + 1 > kMaxPathBytes) return;
+  std::memcpy(g_slots[slot].path, path.c_str(), path.size() + 1);
+  g_slots[slot].state.store(2);
 }
 
 void unregister(int slot) {
@@ -126,6 +133,7 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
   }
   std::random_device random;
   static constexpr char kLetters[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  slot_ = reserve_cleanup_slot();  // before the file exists: no moment where it exists without its cleanup
   int fd = -1;
   for (int attempt = 0; attempt < 100 && fd < 0; ++attempt) {
     std::string name = path_ + ".";
@@ -135,11 +143,16 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
     if (fd >= 0) {
       temp_ = std::move(name);
     } else if (errno != EEXIST) {
-      fail(path_, std::strerror(errno));
+      const int e = errno;
+      abandon();  // frees the slot (a throwing constructor runs no destructor)
+      fail(path_, std::strerror(e));
     }
   }
-  if (fd < 0) fail(path_, "no unused temporary file name");
-  slot_ = register_for_cleanup(temp_);
+  if (fd < 0) {
+    abandon();
+    fail(path_, "no unused temporary file name");
+  }
+  arm_cleanup_slot(slot_, temp_);
   file_ = fdopen(fd, "wb");
   if (!file_) {
     const int e = errno;

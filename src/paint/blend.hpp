@@ -327,8 +327,7 @@ void composite_run(T* dst, const T* src, int src_step, const float* coverage, fl
         over8_row(px + h, s + h, n - h, k);
       }
     } else {
-      // Long runs go aligned from their first aligned pixel on; short ones in one call.
-      const int h = n >= 64 ? to_aligned32(px, n) : 0, step = src_step / 4;
+      const int h = to_aligned32(px, n), step = src_step / 4;
       over8_masked(px, s, step, coverage, scale, clip, h);
       over8_masked(px + h, s + step * h, step, coverage ? coverage + h : nullptr, scale, clip ? clip + h : nullptr,
                    n - h);

@@ -13,7 +13,6 @@
 #include <vector>
 
 #include "blend.hpp"
-#include "raster/cpu.hpp"
 #include "shade.hpp"
 #include "vraster/composite.hpp"
 
@@ -35,7 +34,7 @@ VRASTER_PAINT_CLONES void store8(std::uint32_t* px, int n, std::uint32_t c) {
 }
 
 /// One colour, one coverage for the whole run.
-VRASTER_PAINT_CLONES void over8_constant_scalar(std::uint32_t* px, int n, std::uint32_t s) {
+VRASTER_PAINT_CLONES void over8_constant(std::uint32_t* px, int n, std::uint32_t s) {
   const std::uint32_t inv = 255u - (s >> 24);
   const int head = to_aligned32(px, n);
   for (int i = 0; i < head; ++i) px[i] = s + scale8(px[i], inv);
@@ -53,8 +52,8 @@ VRASTER_PAINT_CLONES void over8_row(std::uint32_t* px, const std::uint32_t* src,
 
 /// Colours (src_step 0: one colour) scaled by per-pixel coverage x scale, optionally lerped by a clip. Each case
 /// is its own loop so that the compiler vectorises it (a run-time source step would make every load a gather).
-VRASTER_PAINT_CLONES void over8_masked_scalar(std::uint32_t* px, const std::uint32_t* src, int src_step,
-                                              const float* coverage, float scale, const std::uint8_t* clip, int n) {
+VRASTER_PAINT_CLONES void over8_masked(std::uint32_t* px, const std::uint32_t* src, int src_step,
+                                       const float* coverage, float scale, const std::uint8_t* clip, int n) {
   const std::uint32_t k = quantize8(scale);
   if (src_step == 0) {
     const std::uint32_t c = src[0];
@@ -79,136 +78,6 @@ VRASTER_PAINT_CLONES void over8_masked_scalar(std::uint32_t* px, const std::uint
   }
 }
 
-
-#ifdef VRASTER_HAVE_AVX2_KERNELS
-// The same source-over arithmetic on eight pixels at a time, with every channel in a 16-bit lane (the products
-// stay below 65536): the scalar loops' values bit for bit. unpacklo/unpackhi split eight pixels into pixels
-// 0, 1, 4, 5 and 2, 3, 6, 7, and packus puts them back in order.
-namespace {
-
-struct Wide8 {  // eight pixels, two per 128-bit half in each register
-  __m256i lo, hi;
-};
-
-[[gnu::target("avx2")]] inline Wide8 widen8(__m256i px) {
-  const __m256i zero = _mm256_setzero_si256();
-  return {_mm256_unpacklo_epi8(px, zero), _mm256_unpackhi_epi8(px, zero)};
-}
-
-[[gnu::target("avx2")]] inline __m256i narrow8(Wide8 w) { return _mm256_packus_epi16(w.lo, w.hi); }
-
-// round(x / 255) of a 16-bit product x <= 255 * 255, as scale8 computes it: t = x + 128, (t + (t >> 8)) >> 8.
-[[gnu::target("avx2")]] inline __m256i div255(__m256i x) {
-  const __m256i t = _mm256_add_epi16(x, _mm256_set1_epi16(128));
-  return _mm256_srli_epi16(_mm256_add_epi16(t, _mm256_srli_epi16(t, 8)), 8);
-}
-
-// Per-pixel levels (one per 32-bit lane, in its low byte) spread over the pixel's four channels.
-[[gnu::target("avx2")]] inline Wide8 spread_levels(__m256i levels32) {
-  const __m256i each_byte = _mm256_setr_epi8(0, 0, 0, 0, 4, 4, 4, 4, 8, 8, 8, 8, 12, 12, 12, 12,  //
-                                             0, 0, 0, 0, 4, 4, 4, 4, 8, 8, 8, 8, 12, 12, 12, 12);
-  return widen8(_mm256_shuffle_epi8(levels32, each_byte));
-}
-
-// quantize8(coverage[i] * scale) for eight coverages: clamp to [0, 1] (NaN -> 0: maxps returns its second
-// operand), then v * 255 + 0.5 truncated.
-[[gnu::target("avx2")]] inline __m256i quantize8x8(__m256 coverage, __m256 scale) {
-  __m256 v = _mm256_mul_ps(coverage, scale);
-  v = _mm256_min_ps(_mm256_max_ps(v, _mm256_setzero_ps()), _mm256_set1_ps(1.f));
-  return _mm256_cvttps_epi32(_mm256_add_ps(_mm256_mul_ps(v, _mm256_set1_ps(255.f)), _mm256_set1_ps(0.5f)));
-}
-
-// s + d * (255 - alpha(s)) / 255 per channel (over8); s and d widened.
-[[gnu::target("avx2")]] inline __m256i over_wide(__m256i s, __m256i d) {
-  const __m256i alpha = _mm256_shufflehi_epi16(_mm256_shufflelo_epi16(s, 0xFF), 0xFF);
-  const __m256i inv = _mm256_sub_epi16(_mm256_set1_epi16(255), alpha);
-  return _mm256_add_epi16(s, div255(_mm256_mullo_epi16(d, inv)));
-}
-
-// (d * (255 - c) + r * c) / 255 per channel (lerp8).
-[[gnu::target("avx2")]] inline __m256i lerp_wide(__m256i d, __m256i r, __m256i c) {
-  const __m256i ic = _mm256_sub_epi16(_mm256_set1_epi16(255), c);
-  return div255(_mm256_add_epi16(_mm256_mullo_epi16(d, ic), _mm256_mullo_epi16(r, c)));
-}
-
-[[gnu::target("avx2")]] inline void over8_constant8(std::uint32_t* px, Wide8 src) {
-  auto* p = reinterpret_cast<__m256i*>(px);
-  const Wide8 d = widen8(_mm256_loadu_si256(p));
-  _mm256_storeu_si256(p, narrow8({over_wide(src.lo, d.lo), over_wide(src.hi, d.hi)}));
-}
-
-[[gnu::target("avx2")]] void over8_constant_avx2(std::uint32_t* px, int n, std::uint32_t s) {
-  const Wide8 src = widen8(_mm256_set1_epi32(static_cast<int>(s)));
-  int i = 0;
-  for (; i + 8 <= n; i += 8) over8_constant8(px + i, src);
-  const std::uint32_t inv = 255u - (s >> 24);
-  for (; i < n; ++i) px[i] = s + scale8(px[i], inv);
-}
-
-// Eight pixels of one of over8_masked's cases: a source colour or a row of colours, per-pixel coverage or one
-// level for all, a clip or none.
-template <bool kSrcRow, bool kCoverage, bool kClip>
-[[gnu::target("avx2")]] inline void over8_masked8(std::uint32_t* px, const std::uint32_t* src, __m256i color,
-                                                  const float* coverage, __m256 scale, __m256i k_all,
-                                                  const std::uint8_t* clip) {
-  auto* p = reinterpret_cast<__m256i*>(px);
-  const Wide8 d = widen8(_mm256_loadu_si256(p));
-  const Wide8 s = widen8(kSrcRow ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(src)) : color);
-  const Wide8 k = spread_levels(kCoverage ? quantize8x8(_mm256_loadu_ps(coverage), scale) : k_all);
-  Wide8 r{over_wide(div255(_mm256_mullo_epi16(s.lo, k.lo)), d.lo),
-          over_wide(div255(_mm256_mullo_epi16(s.hi, k.hi)), d.hi)};
-  if constexpr (kClip) {
-    const __m128i c8 = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(clip));
-    const Wide8 c = spread_levels(_mm256_cvtepu8_epi32(c8));
-    r = {lerp_wide(d.lo, r.lo, c.lo), lerp_wide(d.hi, r.hi, c.hi)};
-  }
-  _mm256_storeu_si256(p, narrow8(r));
-}
-
-template <bool kSrcRow, bool kCoverage, bool kClip>
-[[gnu::target("avx2")]] void over8_masked_avx2(std::uint32_t* px, const std::uint32_t* src, const float* coverage,
-                                               float scale, const std::uint8_t* clip, int n) {
-  const __m256 scale8x = _mm256_set1_ps(scale);
-  const __m256i k_all = _mm256_set1_epi32(static_cast<int>(quantize8(scale)));
-  const __m256i color = _mm256_set1_epi32(static_cast<int>(src[0]));
-  int i = 0;
-  for (; i + 8 <= n; i += 8) {
-    over8_masked8<kSrcRow, kCoverage, kClip>(px + i, kSrcRow ? src + i : src, color, kCoverage ? coverage + i : nullptr,
-                                             scale8x, k_all, kClip ? clip + i : nullptr);
-  }
-  for (; i < n; ++i) {  // the last pixels one by one (masked loads and stores are slow on some processors)
-    const std::uint32_t c = kSrcRow ? src[i] : src[0];
-    const std::uint32_t k = kCoverage ? quantize8(coverage[i] * scale) : quantize8(scale);
-    const std::uint32_t r = over8(scale8(c, k), px[i]);
-    px[i] = kClip ? lerp8(px[i], r, clip[i]) : r;
-  }
-}
-
-}  // namespace
-#endif
-
-void over8_constant(std::uint32_t* px, int n, std::uint32_t s) {
-#ifdef VRASTER_HAVE_AVX2_KERNELS
-  if (cpu_has_avx2()) return over8_constant_avx2(px, n, s);
-#endif
-  over8_constant_scalar(px, n, s);
-}
-
-void over8_masked(std::uint32_t* px, const std::uint32_t* src, int src_step, const float* coverage, float scale,
-                  const std::uint8_t* clip, int n) {
-#ifdef VRASTER_HAVE_AVX2_KERNELS
-  if (cpu_has_avx2()) {
-    const bool row = src_step != 0, cov = coverage != nullptr, clipped = clip != nullptr;
-    if (!row && cov && !clipped) return over8_masked_avx2<false, true, false>(px, src, coverage, scale, clip, n);
-    if (!row && !cov && clipped) return over8_masked_avx2<false, false, true>(px, src, coverage, scale, clip, n);
-    if (!row && cov && clipped) return over8_masked_avx2<false, true, true>(px, src, coverage, scale, clip, n);
-    if (row && cov && !clipped) return over8_masked_avx2<true, true, false>(px, src, coverage, scale, clip, n);
-    if (row && !cov && clipped) return over8_masked_avx2<true, false, true>(px, src, coverage, scale, clip, n);
-    if (row && cov && clipped) return over8_masked_avx2<true, true, true>(px, src, coverage, scale, clip, n);
-  }
-#endif
-  over8_masked_scalar(px, src, src_step, coverage, scale, clip, n);
-}
 
 template <class T>
 CompositeRunFn<T> composite_run_for(CompositeOp op) {

@@ -258,7 +258,11 @@ template <FillRule R>
     if (t >= limit) break;
     const int e = next_clear(bits, t, limit);
     if (run < 0) run = t;
-    sweep_cells<R>(acc + t, cov + (t - run), e - t, sum);
+    if (e - t <= 4) {
+      sweep_block_scalar<R>(acc + t, cov + (t - run), e - t, sum);  // most runs: a cell or two, not worth a call
+    } else {
+      sweep_cells<R>(acc + t, cov + (t - run), e - t, sum);
+    }
     x = e;
   }
   if (run >= 0) flush(x);

@@ -100,8 +100,24 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
 
 }  // namespace
 
+// Blocks up to this many cells always take the dense sweep (glyph-sized paths); larger ones up to the dense limit
+// when they hold at most kDenseCellsPerOutline cells per unit of outline.
+constexpr std::int64_t kAlwaysDenseCells = 8192;
+constexpr double kDenseCellsPerOutline = 16;
+
+// The one choice of the dense sweep, for fills drawn at once and queued ones alike (both must take the same path).
 bool detail::RasterizerImpl::fits_dense(int columns) const {
-  return !edges_.empty() && dense_limit_ > 0 && static_cast<std::int64_t>(columns) * (y_max_ - y_min_) <= dense_limit_;
+  if (edges_.empty() || dense_limit_ <= 0) return false;
+  const std::int64_t cells = static_cast<std::int64_t>(columns) * (y_max_ - y_min_);
+  if (cells > dense_limit_) return false;
+  if (cells > kAlwaysDenseCells) {
+    // A larger block pays only where edges pass through a good share of it: a thin sliver across a large box
+    // would have the dense sweep walk mostly empty cells that the row sweep skips.
+    double outline = 0;  // about the number of cells the edges touch
+    for (const Edge& e : edges_) outline += (e.y1 - e.y0) + std::abs(e.x1 - e.x0);
+    if (static_cast<double>(cells) > kDenseCellsPerOutline * outline) return false;
+  }
+  return true;
 }
 
 bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink) {
