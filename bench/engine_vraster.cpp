@@ -1,5 +1,5 @@
 // vraster itself: Renderer::fill per item into a vraster::Image, the calls svg::render makes; optionally with the
-// renderer's band threads (Renderer::set_threads).
+// renderer's threads (Renderer::set_threads: the frame's fills are queued and drawn by flush()).
 #include <string>
 
 #include "engines.hpp"
@@ -30,6 +30,7 @@ class VrasterEngine final : public Engine {
                                          settings.tolerance};
       renderer_.fill(image_, item.path, item.transform, item.color, options);
     }
+    renderer_.flush();  // with threads the fills were queued: the frame is drawn here
     return true;
   }
 

@@ -26,7 +26,8 @@ class Engine {
   virtual std::string version() const = 0;
 };
 
-/// vraster with `threads` band threads (Renderer::set_threads); 1 is the single-threaded engine of the comparison.
+/// vraster with `threads` threads (Renderer::set_threads; a frame's fills are queued and flushed at its end); 1 is
+/// the single-threaded engine of the comparison.
 std::unique_ptr<Engine> make_vraster_engine(int threads = 1);
 std::unique_ptr<Engine> make_cairo_engine();
 std::unique_ptr<Engine> make_freetype_engine();

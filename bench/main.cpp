@@ -1,6 +1,6 @@
 // vraster_bench: renders the shared benchmark scenes with vraster, Cairo, FreeType's smooth rasterizer and (when
 // built with -DVRASTER_BENCH_BLEND2D_ROOT) Blend2D in the same run, one thread each, plus vraster with --threads N
-// band threads (default 2), and prints the median ms per frame as a Markdown table.
+// threads (default 2), and prints the median ms per frame as a Markdown table.
 //
 //   vraster_bench [SCENE_DIR] [--frames N] [--time SECONDS] [--scene NAME]... [--threads N] [--check] [--no-timing]
 //                 [--out DIR]
@@ -52,7 +52,7 @@ struct Options {
                "  --frames N       timed frames per engine and scene (default: >= 5 frames and --time)\n"
                "  --time SECONDS   minimum timed seconds per engine and scene (default 0.5)\n"
                "  --scene NAME     only this scene (file name without .svg); repeatable, or comma-separated\n"
-               "  --threads N      add vraster with N band threads (default 2; 1: no such column)\n"
+               "  --threads N      add vraster with N threads (default 2; 1: no such column)\n"
                "  --check          compare vraster's image with the other engines' per scene (and the threaded\n"
                "                   vraster's with vraster's: it must be identical)\n"
                "  --no-timing      render one frame per engine only (with --check or --out)\n"

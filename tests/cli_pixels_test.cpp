@@ -61,6 +61,11 @@ TEST(CliRender, ThreadsGiveTheSameBytes) {
       ASSERT_GT(one.size(), 100u) << args;
       EXPECT_TRUE(one == render_bytes(args + " --threads 3")) << args;
     }
+    // --hairline draws with the core Renderer, whose fills wait in its queue with threads until svg::render flushes.
+    const std::string args = "render '" + svg + "' --depth " + depth + " --hairline wu";
+    const std::string one = render_bytes(args + " --threads 1");
+    ASSERT_GT(one.size(), 100u) << args;
+    EXPECT_TRUE(one == render_bytes(args + " --threads 3")) << args;
   }
 }
 

@@ -6,12 +6,17 @@
 // comparison cannot pass by running everything on one thread.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <condition_variable>
 #include <map>
 #include <mutex>
+#include <set>
+#include <thread>
 #include <random>
 #include <tuple>
 
 #include "vraster/canvas.hpp"
+#include "vraster/composite.hpp"
 #include "vraster/renderer.hpp"
 #include "vraster/stroke.hpp"
 
@@ -95,18 +100,26 @@ class CallRecorder final : public CoverageSink {
   std::mutex mutex_;
 };
 
-// Draws the scene with a Renderer of `threads` threads; counts the fills that were cut into bands.
-Image render(const std::vector<Path>& scene, std::uint32_t seed, FillRule rule, AntiAlias aa, int threads,
-             int& banded) {
-  Image image(kSide, kSide);
+// Draws the scene with a Renderer of `threads` threads (with threads, the fills are queued and drawn by flush());
+// counts the fills drawn at once that were cut into bands, and the flushes that were.
+template <class T = std::uint8_t>
+BasicImage<T> render(const std::vector<Path>& scene, std::uint32_t seed, FillRule rule, AntiAlias aa, int threads,
+                     int& banded) {
+  BasicImage<T> image(kSide, kSide);
   image.clear(Color{1, 1, 1, 1});
   Renderer renderer;
   renderer.set_threads(threads);
   std::mt19937 rng(seed);
   for (const Path& p : scene) {
+    const std::size_t queued = renderer.rasterizer().queued_fills();
     renderer.fill(image, p, Affine{}, random_color(rng), FillOptions{rule, aa, 0.1});
-    if (renderer.rasterizer().last_fill_bands() > 1) ++banded;
+    if (renderer.rasterizer().queued_fills() == queued && renderer.rasterizer().last_fill_bands() > 1) ++banded;
   }
+  if (renderer.rasterizer().queued_fills() > 0) {
+    renderer.flush();
+    if (renderer.rasterizer().last_flush_bands() > 1) ++banded;
+  }
+  EXPECT_EQ(renderer.rasterizer().queued_fills(), 0u);
   return image;
 }
 
@@ -123,7 +136,8 @@ TEST(Threads, FillsAreBitIdenticalForEveryModeRuleAndThreadCount) {
           const Image many = render(scene, seed, rule, aa, threads, banded_n);
           EXPECT_TRUE(one.data == many.data) << "seed " << seed << ", " << to_string(aa) << ", " << to_string(rule)
                                              << ", " << threads << " threads";
-          // The exact boundary sweep is not banded; every other mode must have banded the large fills.
+          // The exact boundary sweep is not banded; every other mode must have banded the large fills (NonExterior
+          // fills one by one, the others as one queue).
           if (aa != AntiAlias::Exact) {
             EXPECT_GT(banded_n, 0) << to_string(aa) << ", " << to_string(rule);
           }
@@ -247,6 +261,264 @@ TEST(Threads, ThreadCountIsClamped) {
   EXPECT_EQ(r.threads(), 2);
   Rasterizer moved = std::move(r);  // the workers move with the rasterizer
   EXPECT_EQ(moved.threads(), 2);
+}
+
+// Queued frames (Renderer::fill with threads, then flush): 16-bit images too, for the modes and rules that queue.
+TEST(Threads, QueuedFramesAreBitIdenticalIn16Bits) {
+  for (std::uint32_t seed = 30; seed < 32; ++seed) {
+    const std::vector<Path> scene = random_scene(seed);
+    for (const AntiAlias aa : {AntiAlias::Analytic, AntiAlias::None, AntiAlias::Msaa8, AntiAlias::Ssaa4}) {
+      for (const FillRule rule : {FillRule::NonZero, FillRule::EvenOdd, FillRule::Negative}) {
+        int banded = 0;
+        const Image16 one = render<std::uint16_t>(scene, seed, rule, aa, 1, banded);
+        for (const int threads : {2, 5}) {
+          int banded_n = 0;
+          EXPECT_TRUE(one.data == render<std::uint16_t>(scene, seed, rule, aa, threads, banded_n).data)
+              << "seed " << seed << ", " << to_string(aa) << ", " << to_string(rule) << ", " << threads << " threads";
+          EXPECT_GT(banded_n, 0);
+        }
+      }
+    }
+  }
+}
+
+// Hands every call on to a sink that outlives the queue (the queue owns and destroys the sinks it is given).
+class Forward final : public CoverageSink {
+ public:
+  explicit Forward(CoverageSink& to) : to_(to) {}
+  void span(int y, int x0, int x1, float coverage) override { to_.span(y, x0, x1, coverage); }
+  void row(int y, int x0, int x1, const float* coverage) override { to_.row(y, x0, x1, coverage); }
+  bool takes_concurrent_rows() const override { return to_.takes_concurrent_rows(); }
+
+ private:
+  CoverageSink& to_;
+};
+
+// Every queued fill's coverage calls, row by row, are those of the same fill drawn alone on one thread: the large
+// sweeps, the small dense paths (a block of the band's rows only, in each band they cross) and a
+// rectangle (recorded, then replayed band by band).
+TEST(Threads, QueuedCoverageCallsAreTheSameRowByRow) {
+  for (std::uint32_t seed = 40; seed < 43; ++seed) {
+    std::vector<Path> scene = random_scene(seed);
+    scene.push_back(Path().add_rect({10.5, 20.25, 250, 180.75}));
+    scene.push_back(Path().add_rect({-30, -30, kSide + 30, kSide + 30}));
+    for (const AntiAlias aa : {AntiAlias::Analytic, AntiAlias::None, AntiAlias::Msaa4}) {
+      const FillRule rule = seed % 2 ? FillRule::NonZero : FillRule::EvenOdd;
+      std::vector<CallRecorder> alone(scene.size()), queued(scene.size());
+      Rasterizer one, many;
+      many.set_threads(3);
+      std::size_t queued_count = 0;
+      for (std::size_t i = 0; i < scene.size(); ++i) {
+        Polylines lines;
+        flatten(scene[i], Affine{}, FlattenOptions{}, lines);
+        one.fill(lines, rule, aa, kSide, kSide, alone[i]);
+        const std::size_t before = many.queued_fills();
+        many.fill_queued(lines, rule, aa, kSide, kSide, std::make_unique<Forward>(queued[i]));
+        if (many.queued_fills() > before) ++queued_count;
+      }
+      // Nothing of a queued fill has reached its sink yet.
+      for (std::size_t i = 0; i < scene.size(); ++i) {
+        if (!alone[i].rows.empty() && queued[i].rows.empty()) continue;
+        EXPECT_TRUE(alone[i].rows == queued[i].rows) << "fill " << i << " drawn at once differs";
+      }
+      EXPECT_GT(queued_count, scene.size() / 2);
+      many.flush();
+      EXPECT_GT(many.last_flush_bands(), 1);
+      for (std::size_t i = 0; i < scene.size(); ++i) {
+        EXPECT_TRUE(alone[i].rows == queued[i].rows)
+            << "seed " << seed << ", " << to_string(aa) << ", fill " << i;
+      }
+    }
+  }
+}
+
+// Calls that do not queue (a borrowed sink, hairlines, a mask, a gradient compositor, exact coverage) run after
+// what is queued: the painter's order holds, 8 and 16 bits, with paint compositors handed to the queue too.
+template <class T>
+std::vector<T> draw_mixed(std::uint32_t seed, int threads) {
+  BasicImage<T> image(kSide, kSide);
+  image.clear(Color{1, 1, 1, 1});
+  Renderer renderer;
+  renderer.set_threads(threads);
+  std::mt19937 rng(seed);
+  const std::vector<Path> scene = random_scene(seed);
+  const FillOptions options{FillRule::NonZero, AntiAlias::Analytic, 0.1};
+  Paint gradient = Paint::linear({0, 0}, {kSide, kSide / 2});
+  gradient.add_stop(0, Color{1, 0, 0, 0.8f});
+  gradient.add_stop(1, Color{0, 0, 1, 0.4f});
+  std::vector<Paint> solids;
+  for (std::size_t i = 0; i < scene.size(); ++i) solids.push_back(Paint::solid(random_color(rng)));
+  const std::vector<std::uint8_t> mask(40 * 30, 200);
+  for (std::size_t i = 0; i < scene.size(); ++i) {
+    switch (i % 6) {
+      case 0: {  // a paint compositor, handed to the queue
+        auto c = std::make_unique<Compositor<T>>();
+        c->set(ImageView<T>::of(image), solids[i], Affine{}, CompositeOp::SourceOver);
+        renderer.fill(scene[i], Affine{}, options, kSide, kSide, std::move(c));
+        break;
+      }
+      case 1: {  // a gradient: shades into the compositor's own buffer, so it is drawn at once
+        Compositor<T> c;
+        c.set(ImageView<T>::of(image), gradient, Affine{}, CompositeOp::SourceOver);
+        renderer.fill(scene[i], Affine{}, options, kSide, kSide, c);
+        break;
+      }
+      case 2: {
+        SolidCompositor<T> c(image, random_color(rng));
+        renderer.hairlines(scene[i], Affine{}, HairlineMode::Wu, kSide, kSide, c);
+        break;
+      }
+      case 3: {
+        SolidCompositor<T> c(image, Color{0.2f, 0.7f, 0.1f, 0.9f});
+        renderer.mask(mask.data(), 40, 30, 40, static_cast<int>(i * 13) % kSide, 50, kSide, kSide, c);
+        break;
+      }
+      case 4:
+        renderer.fill(image, scene[i], Affine{}, random_color(rng),
+                      FillOptions{FillRule::EvenOdd, AntiAlias::Exact, 0.1});
+        break;
+      default:
+        renderer.fill(image, scene[i], Affine{}, random_color(rng), options);
+        break;
+    }
+  }
+  renderer.flush();
+  return image.data;
+}
+
+TEST(Threads, QueuedFillsKeepThePaintersOrderWithOtherCalls) {
+  for (std::uint32_t seed = 50; seed < 53; ++seed) {
+    const auto one8 = draw_mixed<std::uint8_t>(seed, 1);
+    const auto one16 = draw_mixed<std::uint16_t>(seed, 1);
+    for (const int threads : kThreadCounts) {
+      EXPECT_TRUE(one8 == draw_mixed<std::uint8_t>(seed, threads)) << "8-bit, seed " << seed << ", " << threads;
+      EXPECT_TRUE(one16 == draw_mixed<std::uint16_t>(seed, threads)) << "16-bit, seed " << seed << ", " << threads;
+    }
+  }
+}
+
+Path big_triangle() {
+  Path p;
+  p.move_to({0, 0});
+  p.line_to({kSide, 10});
+  p.line_to({20, kSide});
+  p.close();
+  return p;
+}
+
+// A queued fill changes no pixel until flush(); a small fill with nothing queued before it is drawn at once
+// (queueing it would cost more than it saves), after a large one it waits too.
+TEST(Threads, QueueWaitsForFlushAndSmallFillsAreDrawnAtOnce) {
+  Image image(kSide, kSide);
+  image.clear(Color{1, 1, 1, 1});
+  const Image white = image;
+  Renderer renderer;
+  renderer.set_threads(2);
+  const FillOptions options;
+  Path tiny;
+  tiny.move_to({5, 5});
+  tiny.line_to({6, 5});
+  tiny.line_to({5, 6});
+  tiny.close();
+  renderer.fill(image, tiny, Affine{}, Color{0, 0, 0, 1}, options);
+  EXPECT_EQ(renderer.rasterizer().queued_fills(), 0u);
+  EXPECT_FALSE(image.data == white.data);
+  const Image with_tiny = image;
+  renderer.fill(image, big_triangle(), Affine{}, Color{1, 0, 0, 1}, options);
+  EXPECT_EQ(renderer.rasterizer().queued_fills(), 1u);
+  renderer.fill(image, tiny, Affine::translate(100, 100), Color{0, 0, 1, 1}, options);
+  EXPECT_EQ(renderer.rasterizer().queued_fills(), 2u);
+  EXPECT_TRUE(image.data == with_tiny.data);
+  renderer.flush();
+  EXPECT_EQ(renderer.rasterizer().queued_fills(), 0u);
+  EXPECT_FALSE(image.data == with_tiny.data);
+  EXPECT_EQ(image.pixel(10, 12)[0], 255);  // inside the red triangle
+  EXPECT_EQ(image.pixel(10, 12)[1], 0);
+
+  // A borrowed sink that gives no copy of itself (CoverageSink::clone) is drawn at once.
+  Polylines lines;
+  flatten(big_triangle(), Affine{}, FlattenOptions{}, lines);
+  Rasterizer r;
+  r.set_threads(2);
+  CallRecorder recorder;
+  r.fill_queued(lines, FillRule::NonZero, AntiAlias::Analytic, kSide, kSide, recorder);
+  EXPECT_EQ(r.queued_fills(), 0u);
+  EXPECT_FALSE(recorder.rows.empty());
+}
+
+// set_threads and the destructor run what is queued; a queue past its memory budget runs by itself. Every case
+// gives the pixels of one thread.
+TEST(Threads, QueueRunsOnSetThreadsDestructionAndMemoryBudget) {
+  const FillOptions options;
+  // A zigzag of 60,000 edges: 16 MiB of edge tables are reached within six such fills.
+  Path zigzag;
+  zigzag.move_to({0, 0});
+  for (int i = 0; i < 30000; ++i) {
+    zigzag.line_to({kSide * (i % 2 ? 0.1 : 0.9), kSide * (i + 0.5) / 30000.0});
+  }
+  zigzag.line_to({0, kSide});
+  zigzag.close();
+  auto draw = [&](int threads, int mode) {
+    Image image(kSide, kSide);
+    image.clear(Color{1, 1, 1, 1});
+    {
+      Renderer renderer;
+      renderer.set_threads(threads);
+      const int fills = mode == 2 ? 12 : 3;
+      std::size_t most_queued = 0;
+      for (int i = 0; i < fills; ++i) {
+        renderer.fill(image, mode == 2 ? zigzag : big_triangle(), Affine::translate(i * 3.0, i * 2.0),
+                      Color{0.1f * static_cast<float>(i % 10), 0.5f, 0.9f, 0.5f}, options);
+        most_queued = std::max(most_queued, renderer.rasterizer().queued_fills());
+      }
+      if (threads > 1 && mode == 2) {
+        EXPECT_GT(most_queued, 1u);
+        EXPECT_LT(most_queued, 12u);  // the budget ran the queue before the last fill
+      }
+      if (mode == 0) renderer.set_threads(1);
+      // mode 1 and 2: the destructor flushes
+    }
+    return image.data;
+  };
+  for (int mode = 0; mode < 3; ++mode) EXPECT_TRUE(draw(1, mode) == draw(2, mode)) << "mode " << mode;
+}
+
+// The queue's bands really run on several threads at once: the sink holds the first thread that enters it until a
+// second thread enters it too (or 20 s pass, which only a broken pool would take).
+TEST(Threads, QueuedBandsRunOnSeveralThreadsAtOnce) {
+  class Rendezvous final : public CoverageSink {
+   public:
+    void span(int, int, int, float) override { meet(); }
+    void row(int, int, int, const float*) override { meet(); }
+    bool takes_concurrent_rows() const override { return true; }
+    void meet() {
+      std::unique_lock<std::mutex> lock(mutex_);
+      threads_.insert(std::this_thread::get_id());
+      if (threads_.size() >= 2) {
+        met = true;
+        seen_.notify_all();
+      } else if (!met) {
+        seen_.wait_for(lock, std::chrono::seconds(20), [&] { return met; });
+      }
+    }
+    bool met = false;
+
+   private:
+    std::mutex mutex_;
+    std::condition_variable seen_;
+    std::set<std::thread::id> threads_;
+  };
+  Polylines lines;
+  flatten(big_triangle(), Affine{}, FlattenOptions{}, lines);
+  Rendezvous sink;
+  Rasterizer r;
+  r.set_threads(2);
+  for (int i = 0; i < 4; ++i) {
+    r.fill_queued(lines, FillRule::NonZero, AntiAlias::Analytic, kSide, kSide, std::make_unique<Forward>(sink));
+  }
+  EXPECT_EQ(r.queued_fills(), 4u);
+  r.flush();
+  EXPECT_TRUE(sink.met);
 }
 
 }  // namespace

@@ -77,6 +77,9 @@ class CoverageSink {
   /// each band, and no two threads ever get the same row. Sinks that keep state across calls answer false (the
   /// default) and get every call on the caller's thread, in order.
   virtual bool takes_concurrent_rows() const { return false; }
+  /// A copy of this sink that can be kept and called later (Rasterizer::fill_queued keeps one for each fill it
+  /// queues), or null (the default) for a sink that cannot be copied so: fills into it are drawn at once.
+  virtual std::unique_ptr<CoverageSink> clone() const { return nullptr; }
 };
 
 /// A device-space line segment, stored top to bottom (y0 < y1), with the direction of the original segment.
@@ -165,6 +168,29 @@ class Rasterizer {
   int threads() const;
   /// How many bands of rows the last fill() was swept in (1: on the caller's thread alone; for tests and tools).
   int last_fill_bands() const;
+
+  /// As fill(), but with threads (set_threads(n > 1)) the fill may wait in a queue until flush(): the edges are
+  /// built now, and flush() cuts the rows of every queued fill into bands that the threads take, each band running
+  /// the whole queue over its rows in order. One fork and join for the queue instead of one per fill, and small
+  /// fills are spread over the threads too. The coverage is the same, bit for bit, as fill() one by one.
+  ///
+  /// The rasterizer owns `sink` until its fill has run. Queued: fills whose sink takes concurrent rows, in every
+  /// mode but Exact, under every rule but NonExterior; the others (and every fill without threads) are drawn at
+  /// once, after what is queued, as are small fills with nothing queued before them (queueing would cost more
+  /// than it saves; once a large fill waits, small ones join it). Whatever the sinks write (the image) must not be read or written otherwise before flush(); fill(),
+  /// set_threads() and the destructor flush first, and the queue runs by itself when it holds more than a memory
+  /// budget (16 MiB of edge tables).
+  void fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
+                   std::unique_ptr<CoverageSink> sink);
+  /// As above with a borrowed sink: a fill that waits keeps sink.clone() (a sink that gives none is drawn at once);
+  /// one drawn at once uses `sink` itself, so no copy is made for it.
+  void fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
+  /// Runs the queued fills (nothing when none is queued).
+  void flush();
+  /// Fills waiting for flush() (for tests and tools).
+  std::size_t queued_fills() const;
+  /// How many bands of rows the last flush ran its queue in (1: on the caller's thread alone; 0: no flush yet).
+  int last_flush_bands() const;
 
  private:
   std::unique_ptr<detail::RasterizerImpl> impl_;  // one allocation per Rasterizer, none per fill

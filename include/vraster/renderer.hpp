@@ -23,6 +23,8 @@ class SolidCompositor final : public CoverageSink {
   void row(int y, int x0, int x1, const float* coverage) override;
   /// Rows are independent pixels and nothing changes between calls.
   bool takes_concurrent_rows() const override { return true; }
+  /// A copy drawing the same colour onto the same image.
+  std::unique_ptr<CoverageSink> clone() const override { return std::make_unique<SolidCompositor>(*this); }
 
  private:
   void span8(int y, int x0, int x1, float coverage);
@@ -91,17 +93,33 @@ class Renderer {
   void mask(const std::uint8_t* mask, int mask_width, int mask_height, std::ptrdiff_t stride, int x, int y, int width,
             int height, CoverageSink& sink);
 
+  /// As fill() above, handing `sink` over: with threads (set_threads(n > 1)) the fill may wait in the rasterizer's
+  /// queue until flush() (Rasterizer::fill_queued: which fills queue, and why the pixels are the same).
+  void fill(const Path& path, const Affine& transform, const FillOptions& options, int width, int height,
+            std::unique_ptr<CoverageSink> sink);
+  /// As fill() above with a borrowed sink: a fill that waits keeps sink.clone(); a sink that gives none is drawn at
+  /// once (Rasterizer::fill_queued).
+  void fill_queued(const Path& path, const Affine& transform, const FillOptions& options, int width, int height,
+                   CoverageSink& sink);
+
   /// Convenience for tools and tests: fills `path`, mapped by `transform`, with one solid `color` source-over onto
-  /// `image` (fill() into a SolidCompositor). Drawing code with paints, operators or clips uses fill() with its
-  /// own compositor (or the Canvas).
+  /// `image` (a SolidCompositor). With threads the fill is queued (fill_queued): call flush() before reading
+  /// `image`. Drawing code with paints, operators or clips uses fill() with its own compositor (or the
+  /// Canvas).
   template <class T>
   void fill(BasicImage<T>& image, const Path& path, const Affine& transform, Color color, const FillOptions& options);
+
+  /// Draws every queued fill (see above). Every other drawing call of this renderer (fill() with a borrowed sink,
+  /// stroke(), hairlines(), mask()), set_threads() and the destructor flush first, so the painter's order holds
+  /// across them; only reading or writing the image by other means needs an explicit flush().
+  void flush() { rasterizer_.flush(); }
 
   /// Flattens `path` for a fill on a width x height device (clipped flattening) into an internal buffer.
   const Polylines& flatten_for_fill(const Path& path, const Affine& transform, double tolerance, int width,
                                     int height);
   Rasterizer& rasterizer() { return rasterizer_; }
-  /// Threads for large fills (Rasterizer::set_threads): same pixels, bit for bit, as one thread.
+  /// Threads for large fills and queued frames (Rasterizer::set_threads, fill_queued): same pixels, bit for bit,
+  /// as one thread.
   void set_threads(int threads) { rasterizer_.set_threads(threads); }
   int threads() const { return rasterizer_.threads(); }
   /// Points flattened by this renderer's fills so far (for work limits across many draw calls).

@@ -31,8 +31,23 @@ void Renderer::fill(const Path& path, const Affine& transform, const FillOptions
   rasterizer_.fill(lines, options.rule, options.aa, width, height, sink);
 }
 
+void Renderer::fill(const Path& path, const Affine& transform, const FillOptions& options, int width, int height,
+                    std::unique_ptr<CoverageSink> sink) {
+  if (path.empty() || width <= 0 || height <= 0) return;
+  const Polylines& lines = flatten_for_fill(path, transform, options.tolerance, width, height);
+  rasterizer_.fill_queued(lines, options.rule, options.aa, width, height, std::move(sink));
+}
+
+void Renderer::fill_queued(const Path& path, const Affine& transform, const FillOptions& options, int width,
+                           int height, CoverageSink& sink) {
+  if (path.empty() || width <= 0 || height <= 0) return;
+  const Polylines& lines = flatten_for_fill(path, transform, options.tolerance, width, height);
+  rasterizer_.fill_queued(lines, options.rule, options.aa, width, height, sink);
+}
+
 void Renderer::mask(const std::uint8_t* mask, int mask_width, int mask_height, std::ptrdiff_t stride, int x, int y,
                     int width, int height, CoverageSink& sink) {
+  flush();  // painter's order with queued fills
   if (!mask || mask_width <= 0 || mask_height <= 0) return;
   // 64-bit bounds: a mask placed near the int limits must not wrap around.
   const std::int64_t x0 = std::max<std::int64_t>(x, 0), x1 = std::min<std::int64_t>(std::int64_t{x} + mask_width, width);
@@ -57,7 +72,7 @@ void Renderer::fill(BasicImage<T>& image, const Path& path, const Affine& transf
                     const FillOptions& options) {
   if (!(color.a > 0) || path.empty()) return;  // invisible: no work at all
   SolidCompositor<T> compositor(image, color);
-  fill(path, transform, options, image.width, image.height, compositor);
+  fill_queued(path, transform, options, image.width, image.height, compositor);
 }
 
 template void Renderer::fill(Image&, const Path&, const Affine&, Color, const FillOptions&);

@@ -14,8 +14,72 @@
 
 namespace vraster::detail {
 
+/// An edge table as the sweeps read it: edges bucketed by their first row (bucket r of rows [y_min, y_max) is
+/// order[bucket_start[r] .. bucket_start[r + 1])). Read-only while swept, so bands on several threads share it.
+struct EdgeTableView {
+  const std::vector<Edge>& edges;
+  const std::vector<std::uint32_t>& order;
+  const std::vector<std::uint32_t>& bucket_start;
+  int y_min, y_max;
+};
+
+/// Coverage calls kept for later (a queued rectangle: cheaper computed at once than kept as edges), replayed row
+/// range by row range. Calls are kept in the order they came, which is increasing y.
+class CoverageRecording final : public CoverageSink {
+ public:
+  void span(int y, int x0, int x1, float coverage) override;
+  void row(int y, int x0, int x1, const float* coverage) override;
+  bool takes_concurrent_rows() const override { return false; }  // recorded from one thread, in order
+  /// Hands the calls of rows [y_from, y_to) to `sink`, in the order they came.
+  void replay(int y_from, int y_to, CoverageSink& sink) const;
+  void clear();
+  bool empty() const { return calls_.empty(); }
+  std::size_t calls() const { return calls_.size(); }
+  std::size_t pixels() const { return pixels_; }  // pixels the calls cover
+  std::size_t bytes() const;
+  int y_min() const { return calls_.empty() ? 0 : calls_.front().y; }
+  int y_max() const { return calls_.empty() ? 0 : calls_.back().y + 1; }
+
+ private:
+  struct Call {
+    int y, x0, x1;
+    float coverage;       // a span's coverage
+    std::uint32_t first;  // a row's coverage: values_[first .. first + x1 - x0); kSpan for a span
+  };
+  static constexpr std::uint32_t kSpan = 0xFFFFFFFF;
+  std::vector<Call> calls_;
+  std::vector<float> values_;
+  std::size_t pixels_ = 0;
+};
+
+/// One fill of a rasterizer's queue (Rasterizer::fill_queued): everything its rows need, owned, so that the
+/// rasterizer's own buffers are free for the next fill. Entries are reused from flush to flush (their vectors keep
+/// their capacity).
+struct QueuedFill {
+  enum class Kind : std::uint8_t { Analytic, Aliased, Sampled, Dense, Recorded };
+  Kind kind = Kind::Analytic;
+  int x_base = 0, columns = 0;  // Dense: the cells the edges reach (edge_columns)
+  FillRule rule = FillRule::NonZero;
+  AntiAlias aa = AntiAlias::Analytic;
+  int width = 0;
+  int y_min = 0, y_max = 0;  // rows the fill touches
+  double work = 0;           // band_work's estimate
+  std::vector<Edge> edges;   // Analytic / Aliased / Sampled / Dense
+  std::vector<std::uint32_t> order, bucket_start;  // Analytic / Aliased: the edge table
+  CoverageRecording recording;                      // Recorded
+  std::unique_ptr<CoverageSink> sink;
+
+  EdgeTableView table() const { return {edges, order, bucket_start, y_min, y_max}; }
+  std::size_t bytes() const;
+};
+
 class RasterizerImpl {
  public:
+  RasterizerImpl() = default;
+  ~RasterizerImpl() { flush(); }  // queued fills are drawn, not dropped
+  RasterizerImpl(const RasterizerImpl&) = delete;
+  RasterizerImpl& operator=(const RasterizerImpl&) = delete;
+
   void fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
   void fill_mask(const Polylines& lines, FillRule rule, int width, int height, std::uint8_t* mask,
                  std::ptrdiff_t stride);
@@ -31,6 +95,14 @@ class RasterizerImpl {
   int threads() const { return pool_ ? pool_->threads() : 1; }
   int last_fill_bands_ = 1;
 
+  /// Rasterizer::fill_queued / flush (fill_queue.cpp): `sink` draws what is drawn at once; a queued fill keeps
+  /// `owned` (when given) or sink.clone() (none: drawn at once).
+  void fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink,
+                   std::unique_ptr<CoverageSink> owned);
+  void flush();
+  std::size_t queued_fills() const { return queued_; }
+  int last_flush_bands_ = 0;
+
  private:
   /// Whether edges_ (clipped) have at most Rasterizer::kMaxExactCrossings crossings inside pixel rows
   /// (exact_budget.cpp).
@@ -38,6 +110,8 @@ class RasterizerImpl {
   /// One axis-aligned rectangle: its coverage without a sweep (rect.cpp). False when `lines` is not one.
   bool fill_rect(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
   void build_edges(const Polylines& lines, int width, int height);
+  /// The sweep of the mode over edges_ (built; not Exact's boundary sweep), in bands where they pay.
+  void sweep_edges(FillRule rule, AntiAlias aa, int width, CoverageSink& sink);
   void build_unclipped_edges(const Polylines& lines);
   void clip_pieces(int width, int height);
   void compute_row_range(int height);
@@ -53,6 +127,7 @@ class RasterizerImpl {
     std::vector<double> accumulation;     // analytic sweep: one row of signed area deltas, width + 2 cells
     std::vector<std::uint64_t> touched;   // analytic sweep: one bit per cell written in the current row
     std::vector<float> coverage;          // analytic sweep: coverage handed to the sink
+    std::vector<double> dense_block;      // queued dense fills: rows x columns of cells, zero between fills
   };
   /// How many bands rows [y_min_, y_max_) of edges_ are cut into: 1 without threads, for a sink that wants its
   /// calls in order, or where the fill is too small for bands to pay (estimated from the edges).
@@ -62,13 +137,25 @@ class RasterizerImpl {
   void in_bands(int bands, Sweep&& sweep);
   /// The active list at the top of row y_from, as a sweep from y_min_ would have it (same edges, same order):
   /// the edges bucketed in rows before y_from that still reach below `retire_at`.
-  void start_active(int y_from, double retire_at, std::vector<std::uint32_t>& active) const;
+  static void start_active(const EdgeTableView& table, int y_from, double retire_at,
+                           std::vector<std::uint32_t>& active);
+  EdgeTableView table() const { return {edges_, order_, bucket_start_, y_min_, y_max_}; }
   void sweep_aliased(FillRule rule, int width, CoverageSink& sink);
-  void sweep_aliased_rows(FillRule rule, int width, int y_from, int y_to, BandScratch& s, CoverageSink& sink);
+  /// Rows [y_from, y_to) of an aliased (bucketed by sample row) / analytic (bucketed by row) table, on one thread.
+  static void sweep_aliased_rows(const EdgeTableView& table, FillRule rule, int width, int y_from, int y_to,
+                                 BandScratch& s, CoverageSink& sink);
+  static void sweep_analytic_band(const EdgeTableView& table, FillRule rule, int width, int y_from, int y_to,
+                                  BandScratch& s, CoverageSink& sink);
+  /// The work estimate behind band_count (units of about 10 ns).
+  double band_work() const;
   void sweep_analytic(FillRule rule, int width, CoverageSink& sink);
   void sweep_sampled(FillRule rule, AntiAlias aa, int width, CoverageSink& sink);
   void edge_columns(int& x_base, int& columns) const;
   bool sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink);
+  /// Whether edges_ take the dense sweep with `columns` columns (small paths: a few thousand cells).
+  bool fits_dense(int columns) const;
+  /// The dense sweep of rows [y_from, y_to) of a queued fill, on one thread.
+  static void sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s);
   void bucket_edges(bool by_sample_row);
   void add_edge(Point top, Point bottom, int winding);
   void add_clipped_segment(Point p, Point q, int width, int height);
@@ -91,6 +178,14 @@ class RasterizerImpl {
   std::vector<float> mask_cells_;            // fill_mask: rows x stride float cells, zero between fills
   BoundarySweep boundary_;
   UnitWindingTest unit_winding_;             // exact mode: whether analytic is already exact
+  std::vector<QueuedFill> queue_;            // fill_queued: entries [0, queued_) wait for flush()
+  std::size_t queued_ = 0;
+  std::size_t queued_bytes_ = 0;
+  double queued_work_ = 0;
+  std::vector<int> band_top_;                // flush: the first row of every band, and the end of the last
+  std::vector<std::uint32_t> band_first_;    // flush: band b runs entries band_entries_[band_first_[b] .. [b + 1])
+  std::vector<std::uint32_t> band_entries_;
+  void run_queued_band(int band, BandScratch& s);
 };
 
 }  // namespace vraster::detail

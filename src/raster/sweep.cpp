@@ -105,7 +105,8 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
 constexpr std::int64_t kAlwaysDenseCells = 8192;
 constexpr double kDenseCellsPerOutline = 16;
 
-bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink) {
+// The one choice of the dense sweep, for fills drawn at once and queued ones alike (both must take the same path).
+bool detail::RasterizerImpl::fits_dense(int columns) const {
   if (edges_.empty() || dense_limit_ <= 0) return false;
   const std::int64_t cells = static_cast<std::int64_t>(columns) * (y_max_ - y_min_);
   if (cells > dense_limit_) return false;
@@ -116,6 +117,12 @@ bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, i
     for (const Edge& e : edges_) outline += (e.y1 - e.y0) + std::abs(e.x1 - e.x0);
     if (static_cast<double>(cells) > kDenseCellsPerOutline * outline) return false;
   }
+  return true;
+}
+
+bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink) {
+  if (!fits_dense(columns)) return false;
+  const std::int64_t cells = static_cast<std::int64_t>(columns) * (y_max_ - y_min_);
   if (dense_block_.size() < static_cast<std::size_t>(cells)) dense_block_.assign(static_cast<std::size_t>(cells), 0.0);
   if (row_coverage_.size() < static_cast<std::size_t>(columns)) row_coverage_.resize(static_cast<std::size_t>(columns));
   double* block = dense_block_.data();
@@ -124,6 +131,20 @@ bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, i
     sweep_dense_rows<decltype(r)::value>(edges_, y_min_, y_max_, x_base, columns, width, block, cov, sink);
   });
   return true;
+}
+
+// Rows [y_from, y_to) of a queued dense fill: the dense sweep over those rows alone. Each row's cells take the pieces
+// of the edges inside that row (in edge order) and its own running sum, so a block of fewer rows gives those rows'
+// bits exactly.
+void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s) {
+  const auto columns = static_cast<std::size_t>(fill.columns);
+  const std::size_t cells = columns * static_cast<std::size_t>(y_to - y_from);
+  if (s.dense_block.size() < cells) s.dense_block.assign(cells, 0.0);
+  if (s.coverage.size() < columns) s.coverage.resize(columns);
+  with_rule(fill.rule, [&](auto r) {
+    sweep_dense_rows<decltype(r)::value>(fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width,
+                                         s.dense_block.data(), s.coverage.data(), *fill.sink);
+  });
 }
 
 // The columns edges_ reach: cells [x_base, x_base + columns) hold every cell an edge can write (the last edge's
@@ -149,15 +170,19 @@ constexpr double kMinBandedWork = 800;   // below this, the fork and join cost m
 constexpr double kAreaPerUnit = 16;  // composited pixels per unit of work
 constexpr int kBandsPerThread = 8;   // several bands per thread: a thread that finishes early takes another
 
-int detail::RasterizerImpl::band_count(const CoverageSink& sink) const {
-  const int rows = y_max_ - y_min_;
-  if (!pool_ || rows < 2 * kMinBandRows || !sink.takes_concurrent_rows()) return 1;
+double detail::RasterizerImpl::band_work() const {
   double outline = 0, signed_area = 0;
   for (const Edge& e : edges_) {
     outline += (e.y1 - e.y0) + std::abs(e.x1 - e.x0);
     signed_area += 0.5 * (e.x0 + e.x1) * (e.y1 - e.y0) * e.winding;
   }
-  const double work = outline + std::abs(signed_area) / kAreaPerUnit;
+  return outline + std::abs(signed_area) / kAreaPerUnit;
+}
+
+int detail::RasterizerImpl::band_count(const CoverageSink& sink) const {
+  const int rows = y_max_ - y_min_;
+  if (!pool_ || rows < 2 * kMinBandRows || !sink.takes_concurrent_rows()) return 1;
+  const double work = band_work();
   if (work < kMinBandedWork) return 1;
   const int by_work = static_cast<int>(std::min(work / kWorkPerBand, double{BandPool::kMaxBands}));
   const int threads = pool_->threads();
@@ -182,17 +207,19 @@ void detail::RasterizerImpl::in_bands(int bands, Sweep&& sweep) {
   pool_->run(bands, job);
 }
 
-void detail::RasterizerImpl::start_active(int y_from, double retire_at, std::vector<std::uint32_t>& active) const {
+void detail::RasterizerImpl::start_active(const EdgeTableView& table, int y_from, double retire_at,
+                                          std::vector<std::uint32_t>& active) {
   active.clear();
-  const std::uint32_t before = bucket_start_[static_cast<std::size_t>(y_from - y_min_)];
+  const std::uint32_t before = table.bucket_start[static_cast<std::size_t>(y_from - table.y_min)];
   for (std::uint32_t k = 0; k < before; ++k) {
-    if (edges_[order_[k]].y1 > retire_at) active.push_back(order_[k]);
+    if (table.edges[table.order[k]].y1 > retire_at) active.push_back(table.order[k]);
   }
 }
 
 void detail::RasterizerImpl::set_threads(int threads) {
   threads = std::clamp(threads, 1, 64);
   if (threads == this->threads()) return;
+  flush();
   pool_.reset();
   if (threads > 1) pool_ = std::make_unique<BandPool>(threads);
   bands_.resize(static_cast<std::size_t>(threads));
@@ -203,17 +230,23 @@ void detail::RasterizerImpl::sweep_analytic(FillRule rule, int width, CoverageSi
   edge_columns(x_base, columns);
   if (sweep_dense(rule, width, x_base, columns, sink)) return;
   bucket_edges(false);
-  const std::size_t cells = static_cast<std::size_t>(width) + 2;
   in_bands(band_count(sink), [&](int y0, int y1, BandScratch& s) {
-    if (s.accumulation.size() < cells) s.accumulation.assign(cells, 0.0);
-    if (s.touched.size() < cells / 64 + 1) s.touched.assign(cells / 64 + 1, 0);
-    if (s.coverage.size() < cells) s.coverage.resize(cells);
-    // An edge whose bottom is at or above the band's top was retired before it (e.y1 > bottom keeps an edge).
-    start_active(y0, y0, s.active);
-    with_rule(rule, [&](auto r) {
-      sweep_analytic_rows<decltype(r)::value>(edges_, order_, bucket_start_, s.active, y_min_, y0, y1, width,
-                                              s.accumulation.data(), s.touched.data(), s.coverage.data(), sink);
-    });
+    sweep_analytic_band(table(), rule, width, y0, y1, s, sink);
+  });
+}
+
+void detail::RasterizerImpl::sweep_analytic_band(const EdgeTableView& table, FillRule rule, int width, int y_from,
+                                                 int y_to, BandScratch& s, CoverageSink& sink) {
+  const std::size_t cells = static_cast<std::size_t>(width) + 2;
+  if (s.accumulation.size() < cells) s.accumulation.assign(cells, 0.0);
+  if (s.touched.size() < cells / 64 + 1) s.touched.assign(cells / 64 + 1, 0);
+  if (s.coverage.size() < cells) s.coverage.resize(cells);
+  // An edge whose bottom is at or above the band's top was retired before it (e.y1 > bottom keeps an edge).
+  start_active(table, y_from, y_from, s.active);
+  with_rule(rule, [&](auto r) {
+    sweep_analytic_rows<decltype(r)::value>(table.edges, table.order, table.bucket_start, s.active, table.y_min,
+                                            y_from, y_to, width, s.accumulation.data(), s.touched.data(),
+                                            s.coverage.data(), sink);
   });
 }
 
@@ -236,24 +269,25 @@ void detail::RasterizerImpl::sweep_aliased(FillRule rule, int width, CoverageSin
     // Edges that end at or above the band's first sample line would be retired there anyway. A band's active list
     // starts in a different order than a whole sweep's (which keeps it sorted by x); crossings are sorted per row,
     // and edges crossing at the same x start and end spans at the same pixel, so the pixels are the same.
-    start_active(y0, y0 + 0.5, s.active);
-    sweep_aliased_rows(rule, width, y0, y1, s, sink);
+    sweep_aliased_rows(table(), rule, width, y0, y1, s, sink);
   });
 }
 
-void detail::RasterizerImpl::sweep_aliased_rows(FillRule rule, int width, int y_from, int y_to, BandScratch& s,
-                                                CoverageSink& sink) {
+void detail::RasterizerImpl::sweep_aliased_rows(const EdgeTableView& table, FillRule rule, int width, int y_from,
+                                                int y_to, BandScratch& s, CoverageSink& sink) {
+  const std::vector<Edge>& edges = table.edges;
+  start_active(table, y_from, y_from + 0.5, s.active);
   std::vector<std::uint32_t>& active = s.active;
   std::vector<Crossing>& crossings = s.crossings;
   for (int y = y_from; y < y_to; ++y) {
-    const int r = y - y_min_;
-    for (std::uint32_t k = bucket_start_[r]; k < bucket_start_[r + 1]; ++k) active.push_back(order_[k]);
+    const int r = y - table.y_min;
+    for (std::uint32_t k = table.bucket_start[r]; k < table.bucket_start[r + 1]; ++k) active.push_back(table.order[k]);
     const double sample = y + 0.5;
     // Retire edges that end at or above this sample line, and find where the others cross it.
     crossings.clear();
     std::size_t kept = 0;
     for (std::size_t k = 0; k < active.size(); ++k) {
-      const Edge& e = edges_[active[k]];
+      const Edge& e = edges[active[k]];
       if (e.y1 <= sample) continue;
       active[kept++] = active[k];
       if (e.y0 <= sample) crossings.push_back({e.x_at(sample), active[k]});
@@ -277,7 +311,7 @@ void detail::RasterizerImpl::sweep_aliased_rows(FillRule rule, int width, int y_
     int span_start = 0;
     bool in = false;
     for (const Crossing& c : crossings) {
-      w += edges_[c.edge].winding;
+      w += edges[c.edge].winding;
       const bool now = winding_fills(rule, w);
       if (now == in) continue;
       const int px = static_cast<int>(std::ceil(c.x - 0.5));
@@ -314,10 +348,24 @@ void Rasterizer::set_rect_shortcut(bool on) { impl_->rect_shortcut_ = on; }
 void Rasterizer::set_threads(int threads) { impl_->set_threads(threads); }
 int Rasterizer::threads() const { return impl_->threads(); }
 int Rasterizer::last_fill_bands() const { return impl_->last_fill_bands_; }
+void Rasterizer::fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
+                             std::unique_ptr<CoverageSink> sink) {
+  if (!sink) return;
+  CoverageSink& now = *sink;  // before the pointer moves (argument order is unspecified)
+  impl_->fill_queued(lines, rule, aa, width, height, now, std::move(sink));
+}
+void Rasterizer::fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
+                             CoverageSink& sink) {
+  impl_->fill_queued(lines, rule, aa, width, height, sink, nullptr);
+}
+void Rasterizer::flush() { impl_->flush(); }
+std::size_t Rasterizer::queued_fills() const { return impl_->queued_fills(); }
+int Rasterizer::last_flush_bands() const { return impl_->last_flush_bands_; }
 std::uint64_t Rasterizer::exact_fallbacks() const { return impl_->exact_fallbacks_; }
 
 void detail::RasterizerImpl::fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
                                   CoverageSink& sink) {
+  flush();  // queued fills come first: painter's order
   last_fill_bands_ = 1;
   if (width <= 0 || height <= 0) return;
   if (fill_rect(lines, rule, aa, width, height, sink)) return;
@@ -351,6 +399,10 @@ void detail::RasterizerImpl::fill(const Polylines& lines, FillRule rule, AntiAli
       aa = AntiAlias::Analytic;
     }
   }
+  sweep_edges(rule, aa, width, sink);
+}
+
+void detail::RasterizerImpl::sweep_edges(FillRule rule, AntiAlias aa, int width, CoverageSink& sink) {
   if (edges_.empty()) return;
   if (detail::sample_pattern(aa).grid > 0) {
     sweep_sampled(rule, aa, width, sink);  // ssaa-N, msaa-N

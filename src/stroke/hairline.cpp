@@ -126,6 +126,7 @@ class ScaledSink final : public CoverageSink {
 
 void Renderer::hairlines(const Path& path, const Affine& transform, HairlineMode mode, int width, int height,
                          CoverageSink& sink, float coverage_scale) {
+  flush();  // painter's order with queued fills
   if (!(coverage_scale > 0) || path.empty() || width <= 0 || height <= 0) return;
   const float scale = std::min(coverage_scale, 1.0f);
   detail::RendererScratch& s = *scratch_;

@@ -109,6 +109,7 @@ void render(const Document& doc, BasicImage<T>& image, const RenderSettings& set
                            e.what());
     }
   }
+  renderer.flush();  // with threads, the fills were queued
 }
 
 template void render<std::uint8_t>(const Document&, Image&, const RenderSettings&, Renderer&);

@@ -148,8 +148,9 @@ struct RenderSettings {
   std::optional<HairlineMode> hairline;
 };
 
-/// Draws every item of `doc` onto `image` (which should be doc.width x doc.height) in order. A core limit
-/// reached by one item (vraster::Error) is rethrown as a ParseError at that item's element.
+/// Draws every item of `doc` onto `image` (which should be doc.width x doc.height) in order, and flushes `renderer`
+/// (with threads its fills are queued): `image` is complete on return. A core limit reached by one item
+/// (vraster::Error) is rethrown as a ParseError at that item's element.
 template <class T>
 void render(const Document& doc, BasicImage<T>& image, const RenderSettings& settings, Renderer& renderer);
 

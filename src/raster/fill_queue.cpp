@@ -1,0 +1,234 @@
+// The fill queue (Rasterizer::fill_queued / flush): many fills, one fork and join.
+//
+//   1. fill_queued, on the caller's thread: flatten (the caller) -> build_edges -> bucket_edges, then the edge table
+//      moves into a QueuedFill (a rectangle's few distinct rows are computed at once into a CoverageRecording).
+//      Small fills with nothing queued before them are drawn at once instead.
+//   2. flush: rows [lowest fill top, highest fill bottom) cut into bands, each with the list of fills crossing it;
+//      the caller and the workers claim bands (BandPool: one fork and join)
+//   3. per band: every fill of its list, in queue order, over the band's rows only (the edge table is read-only and
+//      shared)
+//
+// A row's pixels see the fills in the order they were queued (one thread owns the row for the whole queue), and
+// each fill's rows come out of the same arithmetic as an unbanded sweep (docs/design.md, "Threads"), so the image
+// is the same, bit for bit, as drawing the fills one by one on one thread.
+#include <algorithm>
+#include <climits>
+
+#include "raster/rasterizer_p.hpp"
+#include "raster/supersample.hpp"
+
+namespace vraster::detail {
+namespace {
+
+// Bands of the whole queue: several per thread, so that a thread that finishes early takes another, and not so
+// thin that every band repeats much set-up (each band starts the active list of every fill crossing its top).
+constexpr int kQueueBandsPerThread = 8;
+constexpr int kQueueMinBandRows = 8;
+// A fill of less work than this (band_work's units, about 10 ns each; the threshold of banding a fill alone) is
+// drawn at once on the caller's thread when nothing is queued: queued, a small fill costs 5-15 % more on one
+// thread (its edges are stored and read back cold, its sink copied), which a frame of small fills only would not
+// win back. Once a large fill has started a queue, small ones join it (the order must hold).
+constexpr double kMinQueuedFillWork = 800;
+// Recorded fills: composited pixels per unit of work, as band_work counts the area inside.
+constexpr double kRecordedPixelsPerUnit = 16;
+// Memory the queue may hold (edge tables and recordings) before fill_queued runs it.
+constexpr std::size_t kQueueBudgetBytes = std::size_t{16} << 20;
+
+}  // namespace
+
+void CoverageRecording::span(int y, int x0, int x1, float coverage) {
+  calls_.push_back({y, x0, x1, coverage, kSpan});
+  pixels_ += static_cast<std::size_t>(x1 - x0);
+}
+
+void CoverageRecording::row(int y, int x0, int x1, const float* coverage) {
+  calls_.push_back({y, x0, x1, 0.0f, static_cast<std::uint32_t>(values_.size())});
+  values_.insert(values_.end(), coverage, coverage + (x1 - x0));
+  pixels_ += static_cast<std::size_t>(x1 - x0);
+}
+
+void CoverageRecording::replay(int y_from, int y_to, CoverageSink& sink) const {
+  auto call = std::lower_bound(calls_.begin(), calls_.end(), y_from, [](const Call& c, int y) { return c.y < y; });
+  for (; call != calls_.end() && call->y < y_to; ++call) {
+    if (call->first == kSpan) {
+      sink.span(call->y, call->x0, call->x1, call->coverage);
+    } else {
+      sink.row(call->y, call->x0, call->x1, values_.data() + call->first);
+    }
+  }
+}
+
+void CoverageRecording::clear() {
+  calls_.clear();
+  values_.clear();
+  pixels_ = 0;
+}
+
+std::size_t CoverageRecording::bytes() const { return calls_.size() * sizeof(Call) + values_.size() * sizeof(float); }
+
+std::size_t QueuedFill::bytes() const {
+  return edges.size() * sizeof(Edge) + (order.size() + bucket_start.size()) * sizeof(std::uint32_t) +
+         recording.bytes();
+}
+
+void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
+                                 CoverageSink& sink, std::unique_ptr<CoverageSink> owned) {
+  // What the queue does not hold is drawn now (after what is queued, so the order stays): without threads, for a
+  // sink that wants its calls in order, and for the two modes that resolve the whole arrangement before a row.
+  if (!pool_ || !sink.takes_concurrent_rows() || rule == FillRule::NonExterior || aa == AntiAlias::Exact) {
+    fill(lines, rule, aa, width, height, sink);
+    return;
+  }
+  if (width <= 0 || height <= 0) return;
+  if (queued_ == queue_.size()) queue_.emplace_back();
+  QueuedFill& q = queue_[queued_];
+  q.rule = rule;
+  q.aa = aa;
+  q.width = width;
+  q.recording.clear();
+  // The choices of fill(), made now. A small fill with nothing queued before it is drawn at once.
+  bool recorded = fill_rect(lines, rule, aa, width, height, q.recording);
+  if (recorded && queued_ == 0 &&
+      static_cast<double>(q.recording.pixels()) / kRecordedPixelsPerUnit < kMinQueuedFillWork) {
+    q.recording.replay(q.recording.y_min(), q.recording.y_max(), sink);
+    return;
+  }
+  if (!recorded) {
+    build_edges(lines, width, height);
+    if (edges_.empty()) return;
+    q.work = band_work();
+    if (queued_ == 0 && q.work < kMinQueuedFillWork) {
+      sweep_edges(rule, aa, width, sink);
+      return;
+    }
+    if (sample_pattern(aa).grid > 0) {
+      q.kind = QueuedFill::Kind::Sampled;
+    } else if (aa == AntiAlias::None) {
+      bucket_edges(true);
+      q.kind = QueuedFill::Kind::Aliased;
+    } else {
+      edge_columns(q.x_base, q.columns);
+      if (fits_dense(q.columns)) {
+        q.kind = QueuedFill::Kind::Dense;
+      } else {
+        bucket_edges(false);
+        q.kind = QueuedFill::Kind::Analytic;
+      }
+    }
+  }
+  if (recorded && q.recording.empty()) return;  // nothing visible
+  // The sink to keep: the one handed over, or a copy (made only now that the fill really waits).
+  q.sink = owned ? std::move(owned) : sink.clone();
+  if (!q.sink) {  // a sink that cannot be kept: drawn now, after the queue
+    flush();
+    if (recorded) {
+      q.recording.replay(q.recording.y_min(), q.recording.y_max(), sink);
+    } else {
+      sweep_edges(rule, aa, width, sink);
+    }
+    return;
+  }
+  if (recorded) {
+    q.kind = QueuedFill::Kind::Recorded;
+    q.y_min = q.recording.y_min();
+    q.y_max = q.recording.y_max();
+    q.work = static_cast<double>(q.recording.calls()) +
+             static_cast<double>(q.recording.pixels()) / kRecordedPixelsPerUnit;
+    q.edges.clear();
+    q.order.clear();
+    q.bucket_start.clear();
+  } else {
+    // The table moves into the entry; the rasterizer keeps the entry's old buffers for the next fill.
+    q.y_min = y_min_;
+    q.y_max = y_max_;
+    q.edges.swap(edges_);
+    q.order.swap(order_);
+    q.bucket_start.swap(bucket_start_);
+    if (q.kind == QueuedFill::Kind::Dense || q.kind == QueuedFill::Kind::Sampled) {
+      q.order.clear();  // not bucketed: what came over is an earlier fill's table
+      q.bucket_start.clear();
+    }
+  }
+  ++queued_;
+  queued_bytes_ += q.bytes();
+  queued_work_ += q.work;
+  if (queued_bytes_ > kQueueBudgetBytes) flush();
+}
+
+void RasterizerImpl::run_queued_band(int band, BandScratch& s) {
+  const auto b = static_cast<std::size_t>(band);
+  const int y_from = band_top_[b], y_to = band_top_[b + 1];
+  for (std::uint32_t k = band_first_[b]; k < band_first_[b + 1]; ++k) {
+    const QueuedFill& q = queue_[band_entries_[k]];
+    const int y0 = std::max(y_from, q.y_min), y1 = std::min(y_to, q.y_max);
+    switch (q.kind) {
+      case QueuedFill::Kind::Analytic:
+        sweep_analytic_band(q.table(), q.rule, q.width, y0, y1, s, *q.sink);
+        break;
+      case QueuedFill::Kind::Aliased:
+        sweep_aliased_rows(q.table(), q.rule, q.width, y0, y1, s, *q.sink);
+        break;
+      case QueuedFill::Kind::Sampled:
+        detail::sweep_sampled(q.edges, y0, y1, q.rule, sample_pattern(q.aa), q.width, *q.sink);  // supersample.cpp
+        break;
+      case QueuedFill::Kind::Dense:
+        sweep_dense_band(q, y0, y1, s);
+        break;
+      case QueuedFill::Kind::Recorded:
+        q.recording.replay(y0, y1, *q.sink);
+        break;
+    }
+  }
+}
+
+void RasterizerImpl::flush() {
+  if (queued_ == 0) return;
+  int top = INT_MAX, bottom = INT_MIN;
+  for (std::size_t i = 0; i < queued_; ++i) {
+    top = std::min(top, queue_[i].y_min);
+    bottom = std::max(bottom, queue_[i].y_max);
+  }
+  const int rows = bottom - top;
+  int bands = 1;
+  if (pool_ && queued_work_ >= kMinQueuedFillWork) {  // (a fill of this much would be banded alone)
+    bands = std::clamp(std::min(pool_->threads() * kQueueBandsPerThread, rows / kQueueMinBandRows), 1,
+                       BandPool::kMaxBands);
+  }
+  last_flush_bands_ = bands;
+  // Each band's list of the fills crossing it, in queue order (a band never looks at the others).
+  band_top_.resize(static_cast<std::size_t>(bands) + 1);
+  for (int b = 0; b <= bands; ++b) {
+    band_top_[static_cast<std::size_t>(b)] = top + static_cast<int>(std::int64_t{rows} * b / bands);
+  }
+  auto bands_of = [&](const QueuedFill& q, std::size_t& first, std::size_t& last) {
+    const auto tops = band_top_.begin();
+    first = static_cast<std::size_t>(std::upper_bound(tops, band_top_.end(), q.y_min) - tops) - 1;
+    last = static_cast<std::size_t>(std::lower_bound(tops, band_top_.end(), q.y_max) - tops);
+  };
+  band_first_.assign(static_cast<std::size_t>(bands) + 1, 0);
+  for (std::size_t i = 0; i < queued_; ++i) {
+    std::size_t first = 0, last = 0;
+    bands_of(queue_[i], first, last);
+    for (std::size_t b = first; b < last; ++b) ++band_first_[b + 1];
+  }
+  for (std::size_t b = 1; b < band_first_.size(); ++b) band_first_[b] += band_first_[b - 1];
+  band_entries_.resize(band_first_.back());
+  cursor_.assign(band_first_.begin(), band_first_.end() - 1);
+  for (std::size_t i = 0; i < queued_; ++i) {
+    std::size_t first = 0, last = 0;
+    bands_of(queue_[i], first, last);
+    for (std::size_t b = first; b < last; ++b) band_entries_[cursor_[b]++] = static_cast<std::uint32_t>(i);
+  }
+  if (bands == 1) {
+    run_queued_band(0, bands_[0]);
+  } else {
+    auto job = [&](int band, int worker) { run_queued_band(band, bands_[static_cast<std::size_t>(worker)]); };
+    pool_->run(bands, job);
+  }
+  for (std::size_t i = 0; i < queued_; ++i) queue_[i].sink.reset();
+  queued_ = 0;
+  queued_bytes_ = 0;
+  queued_work_ = 0;
+}
+
+}  // namespace vraster::detail
