@@ -226,15 +226,15 @@ class CairoScenes {
   cairo_t* cr_ = nullptr;
 };
 
-struct Scene {
+struct PaintScene {
   std::string name;
   std::string what;
   std::function<void(VrasterScenes&)> ours;
   std::function<void(CairoScenes&)> cairo;
 };
 
-std::vector<Scene> scenes() {
-  std::vector<Scene> s;
+std::vector<PaintScene> scenes() {
+  std::vector<PaintScene> s;
   const Path ellipse = big_ellipse();
   s.push_back({"linear", "ellipse 960x840, linear gradient, 4 opaque stops",
                [=](VrasterScenes& v) { v.clear(); v.fill(ellipse, linear_paint()); },
@@ -378,7 +378,7 @@ int main(int argc, char** argv) {
   }
 
   std::printf("| scene | vraster ms | Cairo ms | Cairo / vraster | what |\n|---|---:|---:|---:|---|\n");
-  for (const Scene& s : scenes()) {
+  for (const PaintScene& s : scenes()) {
     if (!only.empty() && std::find(only.begin(), only.end(), s.name) == only.end()) continue;
     std::vector<double> tv, tc;
     s.ours(ours);
