@@ -164,6 +164,16 @@ TEST(Threads, AnalyticCoverageCallsAreTheSameRowByRow) {
   }
 }
 
+// A triangle of the large scenes: it spans many bands.
+Path big_triangle() {
+  Path p;
+  p.move_to({0, 0});
+  p.line_to({kSide, 10});
+  p.line_to({20, kSide});
+  p.close();
+  return p;
+}
+
 // A sink that needs its calls in order is never given bands.
 TEST(Threads, OrderedSinksGetOneThread) {
   class Ordered final : public CoverageSink {
@@ -179,11 +189,7 @@ TEST(Threads, OrderedSinksGetOneThread) {
    private:
     int last_ = -1;
   };
-  Path big;
-  big.move_to({0, 0});
-  big.line_to({kSide, 10});
-  big.line_to({20, kSide});
-  big.close();
+  const Path big = big_triangle();
   Polylines lines;
   flatten(big, Affine{}, FlattenOptions{}, lines);
   Rasterizer r;
@@ -395,15 +401,6 @@ TEST(Threads, QueuedFillsKeepThePaintersOrderWithOtherCalls) {
       EXPECT_TRUE(one16 == draw_mixed<std::uint16_t>(seed, threads)) << "16-bit, seed " << seed << ", " << threads;
     }
   }
-}
-
-Path big_triangle() {
-  Path p;
-  p.move_to({0, 0});
-  p.line_to({kSide, 10});
-  p.line_to({20, kSide});
-  p.close();
-  return p;
 }
 
 // A queued fill changes no pixel until flush(); a small fill with nothing queued before it is drawn at once
