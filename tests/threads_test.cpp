@@ -164,7 +164,7 @@ TEST(Threads, AnalyticCoverageCallsAreTheSameRowByRow) {
   }
 }
 
-// A triangle of the large scenes: it spans many bands.
+// A triangle across most of the image: it spans many bands.
 Path big_triangle() {
   Path p;
   p.move_to({0, 0});
