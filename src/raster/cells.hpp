@@ -21,39 +21,15 @@ constexpr double kSnap = 0x1p-43;
 
 inline float snapped(double c) { return static_cast<float>(c < kSnap ? 0.0 : (c > 1.0 - kSnap ? 1.0 : c)); }
 
-template <FillRule R>
-inline float coverage_of(double s) {
-  if constexpr (R == FillRule::EvenOdd) {
-    // Fold |s| into [0, 2) (rarely needed: windings beyond 2 inside one pixel), then mirror (1, 2) onto (1, 0).
-    double a = std::abs(s);
-    if (a >= 2.0) a -= 2.0 * std::floor(a * 0.5);
-    return snapped(a > 1.0 ? 2.0 - a : a);
-  } else if constexpr (R == FillRule::Positive) {
-    return snapped(std::clamp(s, 0.0, 1.0));
-  } else if constexpr (R == FillRule::Negative) {
-    return snapped(std::clamp(-s, 0.0, 1.0));
-  } else if constexpr (R == FillRule::AbsGeq2) {
-    return snapped(std::clamp(std::abs(s) - 1.0, 0.0, 1.0));
-  } else {
-    const double a = std::abs(s);
-    return snapped(a < 1.0 ? a : 1.0);
-  }
-}
-
-// The per-row pass: accumulation cells -> running sum -> coverage.
-//
-// The running sum is taken in blocks of four cells, in one fixed order of additions (below), on every machine:
-// with AVX2 the four sums of a block come out of one register, without it the same additions run one by one. So
-// the bits never depend on the instruction set, and the only serial step is one addition per block (the sum
-// carried from block to block) instead of one per cell.
-
-// Coverage of the running sum s under rule R without data-dependent branches: coverage_of's values.
+// Coverage of the running sum s under rule R, without data-dependent branches (the SIMD kernel's arithmetic).
 template <FillRule R>
 inline double rule_coverage(double s) {
   if constexpr (R == FillRule::EvenOdd) {
+    // Fold |s| into [0, 2) (windings beyond 2 inside one pixel; exact, subtracts 0 below 2), then mirror (1, 2)
+    // onto (1, 0).
     double a = std::abs(s);
-    a -= 2.0 * std::floor(a * 0.5);  // exact; subtracts 0 below 2
-    return std::min(a, 2.0 - a);     // a below 1, 2 - a above
+    a -= 2.0 * std::floor(a * 0.5);
+    return std::min(a, 2.0 - a);
   } else if constexpr (R == FillRule::Positive) {
     return std::min(std::max(s, 0.0), 1.0);
   } else if constexpr (R == FillRule::Negative) {
@@ -65,6 +41,18 @@ inline double rule_coverage(double s) {
   }
 }
 
+template <FillRule R>
+inline float coverage_of(double s) {
+  return snapped(rule_coverage<R>(s));
+}
+
+// The per-row pass: accumulation cells -> running sum -> coverage.
+//
+// The running sum is taken in blocks of four cells, in one fixed order of additions (below), on every machine:
+// with AVX2 the four sums of a block come out of one register, without it the same additions run one by one. So
+// the bits never depend on the instruction set, and the only serial step is one addition per block (the sum
+// carried from block to block) instead of one per cell.
+
 // One block of up to four cells, one addition at a time, in the order the AVX2 kernel adds them:
 //   p0 = a, p1 = a + b, p2 = (b + c) + a, p3 = (c + d) + (a + b); cell i gets sum + p_i; the sum moves on by p3.
 template <FillRule R>
@@ -73,7 +61,7 @@ inline void sweep_block_scalar(double* cells, float* cov, int n, double& sum) {
   for (int i = 0; i < n; ++i) v[i] = cells[i];
   const double p[4] = {v[0], v[0] + v[1], (v[1] + v[2]) + v[0], (v[2] + v[3]) + (v[0] + v[1])};
   for (int i = 0; i < n; ++i) {
-    cov[i] = snapped(rule_coverage<R>(sum + p[i]));
+    cov[i] = coverage_of<R>(sum + p[i]);
     cells[i] = 0;
   }
   sum = sum + p[3];
@@ -85,6 +73,9 @@ inline void sweep_cells_scalar(double* cells, float* cov, int n, double& sum) {
 }
 
 #ifdef VRASTER_HAVE_AVX2_KERNELS
+// rule_coverage on four sums. std::min/std::max on doubles are (b < a ? b : a) / (a < b ? b : a); minpd/maxpd
+// return their second operand when the comparison fails, so the argument order below gives the same values (sums
+// here are never NaN).
 template <FillRule R>
 [[gnu::target("avx2")]] inline __m256d rule_coverage_avx2(__m256d s) {
   const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
@@ -105,8 +96,6 @@ template <FillRule R>
   }
 }
 
-// std::min/std::max on doubles are (b < a ? b : a) / (a < b ? b : a); minpd/maxpd return their second operand when
-// the comparison fails, so the argument order above gives the same values (sums here are never NaN).
 template <FillRule R>
 [[gnu::target("avx2")]] void sweep_cells_avx2(double* cells, float* cov, int n, double& sum) {
   const __m256d zero = _mm256_setzero_pd();

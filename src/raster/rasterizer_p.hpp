@@ -148,6 +148,8 @@ class RasterizerImpl {
                                   BandScratch& s, CoverageSink& sink);
   /// The work estimate behind band_count (units of about 10 ns).
   double band_work() const;
+  /// The edges' summed height and width: about the number of cells they touch.
+  double outline_cells() const;
   void sweep_analytic(FillRule rule, int width, CoverageSink& sink);
   void sweep_sampled(FillRule rule, AntiAlias aa, int width, CoverageSink& sink);
   void edge_columns(int& x_base, int& columns) const;

@@ -113,9 +113,7 @@ bool detail::RasterizerImpl::fits_dense(int columns) const {
   if (cells > kAlwaysDenseCells) {
     // A larger block pays only where edges pass through a good share of it: a thin sliver across a large box
     // would have the dense sweep walk mostly empty cells that the row sweep skips.
-    double outline = 0;  // about the number of cells the edges touch
-    for (const Edge& e : edges_) outline += (e.y1 - e.y0) + std::abs(e.x1 - e.x0);
-    if (static_cast<double>(cells) > kDenseCellsPerOutline * outline) return false;
+    if (static_cast<double>(cells) > kDenseCellsPerOutline * outline_cells()) return false;
   }
   return true;
 }
@@ -170,13 +168,16 @@ constexpr double kMinBandedWork = 800;   // below this, the fork and join cost m
 constexpr double kAreaPerUnit = 16;  // composited pixels per unit of work
 constexpr int kBandsPerThread = 8;   // several bands per thread: a thread that finishes early takes another
 
+double detail::RasterizerImpl::outline_cells() const {
+  double outline = 0;
+  for (const Edge& e : edges_) outline += (e.y1 - e.y0) + std::abs(e.x1 - e.x0);
+  return outline;
+}
+
 double detail::RasterizerImpl::band_work() const {
-  double outline = 0, signed_area = 0;
-  for (const Edge& e : edges_) {
-    outline += (e.y1 - e.y0) + std::abs(e.x1 - e.x0);
-    signed_area += 0.5 * (e.x0 + e.x1) * (e.y1 - e.y0) * e.winding;
-  }
-  return outline + std::abs(signed_area) / kAreaPerUnit;
+  double signed_area = 0;
+  for (const Edge& e : edges_) signed_area += 0.5 * (e.x0 + e.x1) * (e.y1 - e.y0) * e.winding;
+  return outline_cells() + std::abs(signed_area) / kAreaPerUnit;
 }
 
 int detail::RasterizerImpl::band_count(const CoverageSink& sink) const {
