@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <map>
 #include <mutex>
@@ -41,6 +42,21 @@ std::vector<Path> random_scene(std::uint32_t seed) {
     p.move_to({coord(rng), coord(rng)});
     const int n = 3 + static_cast<int>(rng() % 30);
     for (int k = 0; k < n; ++k) p.line_to({coord(rng), coord(rng)});
+    p.close();
+    paths.push_back(p);
+  }
+  {  // a star of 151 points: about 150 edges in every row, so its rows are crowded (marked touched as a whole)
+    Path p;
+    const double r = kSide * 0.45 + 10 * unit(rng), phase = unit(rng);
+    for (int k = 0; k < 151; ++k) {
+      const double a = 2 * 3.141592653589793 * (phase + k * 68 / 151.0);
+      const Point q{kSide / 2 + r * std::cos(a), kSide / 2 + r * std::sin(a)};
+      if (k == 0) {
+        p.move_to(q);
+      } else {
+        p.line_to(q);
+      }
+    }
     p.close();
     paths.push_back(p);
   }

@@ -136,7 +136,7 @@ inline void sweep_cells(double* cells, float* cov, int n, double& sum) {
 // x = xb (either order) and covers height h of the row (signed by winding). Cell i receives the part of h
 // times the share of the cell right of the piece, cell i + 1 the rest; the running sum along the row is then the
 // signed area of each pixel that lies right of the edge (the winding number averaged over the pixel).
-inline void accumulate_piece(double* acc, double xa, double xb, double h) {
+[[gnu::always_inline]] inline void accumulate_piece(double* acc, double xa, double xb, double h) {
   if (xa > xb) std::swap(xa, xb);
   const int i0 = static_cast<int>(xa);
   const int i1 = static_cast<int>(xb);
@@ -169,7 +169,7 @@ inline void accumulate_piece(double* acc, double xa, double xb, double h) {
   }
 }
 
-inline void mark_cells(std::uint64_t* bits, int from, int to) {  // inclusive range
+[[gnu::always_inline]] inline void mark_cells(std::uint64_t* bits, int from, int to) {  // inclusive range
   int w0 = from >> 6, w1 = to >> 6;
   const std::uint64_t first = ~std::uint64_t{0} << (from & 63);
   const std::uint64_t last = ~std::uint64_t{0} >> (63 - (to & 63));

@@ -123,6 +123,7 @@ class RasterizerImpl {
   // of its own: the sweeps write their vectors' sizes every row, and two threads must not share those lines.
   struct alignas(64) BandScratch {
     std::vector<std::uint32_t> active;    // the active edge list (indices into edges_)
+    std::vector<double> active_x;         // analytic sweep: where each active edge enters the current row
     std::vector<Crossing> crossings;      // aliased sweep: active edges with their x at the sample row
     std::vector<double> accumulation;     // analytic sweep: one row of signed area deltas, width + 2 cells
     std::vector<std::uint64_t> touched;   // analytic sweep: one bit per cell written in the current row

@@ -30,34 +30,65 @@ using detail::with_rule;
 // Sweeps rows [y_from, y_to) starting from `active` (start_active); every row's arithmetic is a function of the
 // edges and the row alone (x_at from each edge's own start, pieces added in active-list order), so a band gives the
 // bits a sweep of the whole range gives.
+// A row with at least one active edge per this many pixels of the image's width is crowded (below).
+constexpr std::size_t kCrowdedCellsPerEdge = 4;
+
 template <FillRule R>
 VRASTER_CLONES void sweep_analytic_rows(const std::vector<Edge>& edges, const std::vector<std::uint32_t>& order,
                          const std::vector<std::uint32_t>& bucket_start, std::vector<std::uint32_t>& active,
-                         int y_min, int y_from, int y_to, int width, double* acc, std::uint64_t* bits, float* cov,
-                         CoverageSink& sink) {
+                         std::vector<double>& active_x, int y_min, int y_from, int y_to, int width, double* acc,
+                         std::uint64_t* bits, float* cov, CoverageSink& sink) {
+  // active_x[k]: where active edge k enters the current row (its x at max(y0, row top)). An edge that goes on below
+  // the row leaves at x_at(bottom), which is the very number x_at(top) gives in the next row: it is kept instead of
+  // computed twice. (Edges active from before y_from enter with x_at(y_from), the same number again.)
+  active_x.resize(active.size());
+  for (std::size_t k = 0; k < active.size(); ++k) {
+    const Edge& e = edges[active[k]];
+    active_x[k] = y_from <= e.y0 ? e.x0 : e.x_at(y_from);
+  }
   for (int y = y_from; y < y_to; ++y) {
     const int r = y - y_min;
-    for (std::uint32_t k = bucket_start[r]; k < bucket_start[r + 1]; ++k) active.push_back(order[k]);
+    for (std::uint32_t k = bucket_start[r]; k < bucket_start[r + 1]; ++k) {
+      active.push_back(order[k]);
+      active_x.push_back(edges[order[k]].x0);  // bucketed in its first row: it enters at its top
+    }
     if (active.empty()) continue;
     const double top = y, bottom = y + 1.0;
     int x_lo = width + 1, x_hi = 0;
     std::size_t kept = 0;
+    // A crowded row (pieces for a good share of its cells, as in a star with hundreds of crossings per row): its
+    // cells are marked touched all at once from x_lo to x_hi instead of piece by piece, and swept in one run. The
+    // test depends on the row's own edges only, so a band or a queued fill decides every row as a whole sweep does.
+    const bool crowded = active.size() * kCrowdedCellsPerEdge >= static_cast<std::size_t>(width);
     for (std::size_t k = 0; k < active.size(); ++k) {
-      const Edge& e = edges[active[k]];
-      const double ya = std::max(e.y0, top), yb = std::min(e.y1, bottom);
+      const std::uint32_t index = active[k];
+      const Edge& e = edges[index];
+      const double ya = std::max(e.y0, top);
+      const double xa = active_x[k];
+      double yb, xb;
+      if (e.y1 > bottom) {
+        yb = bottom;
+        xb = e.x_at(bottom);
+        active[kept] = index;
+        active_x[kept++] = xb;
+      } else {
+        yb = e.y1;
+        xb = e.x1;
+      }
       if (yb > ya) {
-        const double xa = ya == e.y0 ? e.x0 : e.x_at(ya);
-        const double xb = yb == e.y1 ? e.x1 : e.x_at(yb);
         accumulate_piece(acc, xa, xb, (yb - ya) * e.winding);
         const int c0 = static_cast<int>(std::min(xa, xb)), c1 = static_cast<int>(std::max(xa, xb)) + 1;
-        mark_cells(bits, c0, c1);
+        if (!crowded) mark_cells(bits, c0, c1);
         x_lo = std::min(x_lo, c0);
         x_hi = std::max(x_hi, c1);
       }
-      if (e.y1 > bottom) active[kept++] = active[k];
     }
     active.resize(kept);
-    if (x_lo <= x_hi) resolve_row<R>(y, width, x_lo, x_hi, acc, bits, cov, sink);
+    active_x.resize(kept);
+    if (x_lo <= x_hi) {
+      if (crowded) mark_cells(bits, x_lo, x_hi);
+      resolve_row<R>(y, width, x_lo, x_hi, acc, bits, cov, sink);
+    }
   }
 }
 
@@ -245,8 +276,8 @@ void detail::RasterizerImpl::sweep_analytic_band(const EdgeTableView& table, Fil
   // An edge whose bottom is at or above the band's top was retired before it (e.y1 > bottom keeps an edge).
   start_active(table, y_from, y_from, s.active);
   with_rule(rule, [&](auto r) {
-    sweep_analytic_rows<decltype(r)::value>(table.edges, table.order, table.bucket_start, s.active, table.y_min,
-                                            y_from, y_to, width, s.accumulation.data(), s.touched.data(),
+    sweep_analytic_rows<decltype(r)::value>(table.edges, table.order, table.bucket_start, s.active, s.active_x,
+                                            table.y_min, y_from, y_to, width, s.accumulation.data(), s.touched.data(),
                                             s.coverage.data(), sink);
   });
 }
