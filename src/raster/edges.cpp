@@ -7,16 +7,20 @@
 
 namespace vraster {
 
-void detail::RasterizerImpl::add_edge(Point top, Point bottom, int winding) {
+namespace {
+
+void add_edge(std::vector<Edge>& edges, Point top, Point bottom, int winding) {
   if (!(bottom.y > top.y)) return;  // horizontal (or degenerate after clipping): contributes nothing
   const double dxdy = (bottom.x - top.x) / (bottom.y - top.y);
-  edges_.push_back({top.x, top.y, bottom.x, bottom.y, std::isfinite(dxdy) ? dxdy : 0.0, winding});
+  edges.push_back({top.x, top.y, bottom.x, bottom.y, std::isfinite(dxdy) ? dxdy : 0.0, winding});
 }
+
+}  // namespace
 
 // Clips segment p -> q to the device rectangle [0, width] x [0, height] and records what is left:
 //  - parts above or below the rectangle, or right of it, change no pixel inside: dropped;
 //  - parts left of it still change the winding of every pixel to their right: kept as vertical edges at x = 0.
-void detail::RasterizerImpl::add_clipped_segment(Point p, Point q, int width, int height) {
+void detail::add_clipped_segment(std::vector<Edge>& edges, Point p, Point q, int width, int height) {
   if (p.y == q.y) return;
   const int winding = q.y > p.y ? 1 : -1;
   Point a = winding > 0 ? p : q;  // top
@@ -32,8 +36,8 @@ void detail::RasterizerImpl::add_clipped_segment(Point p, Point q, int width, in
   if (a.y < 0) a = {x_at_y(0), 0};
   if (b.y > h) b = {x_at_y(h), h};
   const double w = width;
-  if (a.x <= 0 && b.x <= 0) return add_edge({0, a.y}, {0, b.y}, winding);
-  if (a.x >= 0 && a.x <= w && b.x >= 0 && b.x <= w) return add_edge(a, b, winding);
+  if (a.x <= 0 && b.x <= 0) return add_edge(edges, {0, a.y}, {0, b.y}, winding);
+  if (a.x >= 0 && a.x <= w && b.x >= 0 && b.x <= w) return add_edge(edges, a, b, winding);
 
   // The segment crosses x = 0 and/or x = width: split it there.
   auto y_at_x = [&](double x) {
@@ -54,17 +58,18 @@ void detail::RasterizerImpl::add_clipped_segment(Point p, Point q, int width, in
     const Point s = cuts[i], e = cuts[i + 1];
     const double mid = 0.5 * (s.x + e.x);
     if (mid < 0) {
-      add_edge({0, s.y}, {0, e.y}, winding);
+      add_edge(edges, {0, s.y}, {0, e.y}, winding);
     } else if (mid <= w) {
-      add_edge({std::clamp(s.x, 0.0, w), s.y}, {std::clamp(e.x, 0.0, w), e.y}, winding);
+      add_edge(edges, {std::clamp(s.x, 0.0, w), s.y}, {std::clamp(e.x, 0.0, w), e.y}, winding);
     }
   }
 }
 
-void detail::RasterizerImpl::build_edges(const Polylines& lines, int width, int height) {
-  edges_.clear();
+void detail::build_edges(const Polylines& lines, int width, int height, std::vector<Edge>& edges, int& y_min,
+                         int& y_max) {
+  edges.clear();
   if (lines.points.empty()) {
-    y_min_ = y_max_ = 0;
+    y_min = y_max = 0;
     return;
   }
   // Only clip when something lies outside the image: most paths don't, and then every segment is an edge as is.
@@ -78,30 +83,30 @@ void detail::RasterizerImpl::build_edges(const Polylines& lines, int width, int 
   const bool inside = x_lo >= 0 && y_lo >= 0 && x_hi <= width && y_hi <= height;
   lines.for_each_segment([&](Point p, Point q) {
     if (!inside) {
-      add_clipped_segment(p, q, width, height);
+      add_clipped_segment(edges, p, q, width, height);
     } else if (q.y > p.y) {
-      edges_.push_back({p.x, p.y, q.x, q.y, (q.x - p.x) / (q.y - p.y), 1});
+      edges.push_back({p.x, p.y, q.x, q.y, (q.x - p.x) / (q.y - p.y), 1});
     } else if (q.y < p.y) {
-      edges_.push_back({q.x, q.y, p.x, p.y, (p.x - q.x) / (p.y - q.y), -1});
+      edges.push_back({q.x, q.y, p.x, p.y, (p.x - q.x) / (p.y - q.y), -1});
     }
   });
   if (inside) {
-    y_min_ = std::max(static_cast<int>(std::floor(y_lo)), 0);
-    y_max_ = std::min(static_cast<int>(std::ceil(y_hi)), height);
+    y_min = std::max(static_cast<int>(std::floor(y_lo)), 0);
+    y_max = std::min(static_cast<int>(std::ceil(y_hi)), height);
   } else {
-    compute_row_range(height);
+    row_range(edges, height, y_min, y_max);
   }
 }
 
-void detail::RasterizerImpl::compute_row_range(int height) {
-  y_min_ = height;
-  y_max_ = 0;
-  for (const Edge& e : edges_) {
-    y_min_ = std::min(y_min_, static_cast<int>(std::floor(e.y0)));
-    y_max_ = std::max(y_max_, static_cast<int>(std::ceil(e.y1)));
+void detail::row_range(const std::vector<Edge>& edges, int height, int& y_min, int& y_max) {
+  y_min = height;
+  y_max = 0;
+  for (const Edge& e : edges) {
+    y_min = std::min(y_min, static_cast<int>(std::floor(e.y0)));
+    y_max = std::max(y_max, static_cast<int>(std::ceil(e.y1)));
   }
-  y_min_ = std::max(y_min_, 0);
-  y_max_ = std::min(y_max_, height);
+  y_min = std::max(y_min, 0);
+  y_max = std::min(y_max, height);
 }
 
 // All segments as edges, unclipped; horizontal ones kept apart (NonExterior needs both).
@@ -112,9 +117,9 @@ void detail::RasterizerImpl::build_unclipped_edges(const Polylines& lines) {
     if (p.y == q.y) {
       if (p.x != q.x) horizontals_.push_back({p.x, p.y, q.x, q.y, 0.0, 0});
     } else if (q.y > p.y) {
-      add_edge(p, q, 1);
+      add_edge(edges_, p, q, 1);
     } else {
-      add_edge(q, p, -1);
+      add_edge(edges_, q, p, -1);
     }
   });
 }
@@ -125,33 +130,35 @@ void detail::RasterizerImpl::clip_pieces(int width, int height) {
   for (const Edge& e : pieces_) {
     const Point top{e.x0, e.y0}, bottom{e.x1, e.y1};
     if (e.winding > 0) {
-      add_clipped_segment(top, bottom, width, height);
+      add_clipped_segment(edges_, top, bottom, width, height);
     } else {
-      add_clipped_segment(bottom, top, width, height);
+      add_clipped_segment(edges_, bottom, top, width, height);
     }
   }
-  compute_row_range(height);
+  row_range(edges_, height, y_min_, y_max_);
 }
 
 // Edge table: a counting sort of the edges by the first row they take part in.
 //  analytic: the row containing the edge's top, floor(y0);
 //  aliased:  the first row whose sample line y = r + 0.5 the edge crosses, ceil(y0 - 0.5) (half-open [y0, y1)).
-void detail::RasterizerImpl::bucket_edges(bool by_sample_row) {
-  const int rows = std::max(y_max_ - y_min_, 0);
-  bucket_start_.assign(static_cast<std::size_t>(rows) + 2, 0);
-  edge_row_.resize(edges_.size());
-  for (std::size_t i = 0; i < edges_.size(); ++i) {
-    const double y0 = edges_[i].y0;
+void detail::bucket_edges(const std::vector<Edge>& edges, int y_min, int y_max, bool by_sample_row,
+                          std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& bucket_start,
+                          BucketScratch& scratch) {
+  const int rows = std::max(y_max - y_min, 0);
+  bucket_start.assign(static_cast<std::size_t>(rows) + 2, 0);
+  scratch.edge_row.resize(edges.size());
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const double y0 = edges[i].y0;
     const double r = by_sample_row ? std::ceil(y0 - 0.5) : std::floor(y0);
-    const int row = std::clamp(static_cast<int>(r), y_min_, y_max_) - y_min_;
-    edge_row_[i] = static_cast<std::uint32_t>(row);
-    ++bucket_start_[static_cast<std::size_t>(row) + 1];
+    const int row = std::clamp(static_cast<int>(r), y_min, y_max) - y_min;
+    scratch.edge_row[i] = static_cast<std::uint32_t>(row);
+    ++bucket_start[static_cast<std::size_t>(row) + 1];
   }
-  // Prefix sums: bucket r holds order_[bucket_start_[r] .. bucket_start_[r + 1]).
-  for (std::size_t r = 1; r < bucket_start_.size(); ++r) bucket_start_[r] += bucket_start_[r - 1];
-  order_.resize(edges_.size());
-  cursor_.assign(bucket_start_.begin(), bucket_start_.end() - 1);
-  for (std::uint32_t i = 0; i < edges_.size(); ++i) order_[cursor_[edge_row_[i]]++] = i;
+  // Prefix sums: bucket r holds order[bucket_start[r] .. bucket_start[r + 1]).
+  for (std::size_t r = 1; r < bucket_start.size(); ++r) bucket_start[r] += bucket_start[r - 1];
+  order.resize(edges.size());
+  scratch.cursor.assign(bucket_start.begin(), bucket_start.end() - 1);
+  for (std::uint32_t i = 0; i < edges.size(); ++i) order[scratch.cursor[scratch.edge_row[i]]++] = i;
 }
 
 }  // namespace vraster

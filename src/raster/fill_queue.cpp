@@ -1,11 +1,14 @@
 // The fill queue (Rasterizer::fill_queued / flush): many fills, one fork and join.
 //
-//   1. fill_queued, on the caller's thread: flatten (the caller) -> build_edges -> bucket_edges, then the edge table
-//      moves into a QueuedFill (a rectangle's few distinct rows are computed at once into a CoverageRecording).
-//      Small fills with nothing queued before them are drawn at once instead.
-//   2. flush: rows [lowest fill top, highest fill bottom) cut into bands, each with the list of fills crossing it;
-//      the caller and the workers claim bands (BandPool: one fork and join)
-//   3. per band: every fill of its list, in queue order, over the band's rows only (the edge table is read-only and
+//   1. fill_queued, on the caller's thread: flatten (the caller), then the polylines are copied into a QueuedFill
+//      (a rectangle's few distinct rows are computed at once into a CoverageRecording instead). Small fills with
+//      nothing queued before them are drawn at once.
+//   2. flush, first fork and join: the queued fills' edges and edge tables are built, fills shared out among the
+//      caller and the workers (building them on the caller alone held the other threads idle for a tenth of a
+//      frame of curves)
+//   3. flush, second fork and join: rows [lowest fill top, highest fill bottom) cut into bands, each with the list of
+//      fills crossing it; the caller and the workers claim bands
+//   4. per band: every fill of its list, in queue order, over the band's rows only (the edge table is read-only and
 //      shared)
 //
 // A row's pixels see the fills in the order they were queued (one thread owns the row for the whole queue), and
@@ -13,6 +16,7 @@
 // is the same, bit for bit, as drawing the fills one by one on one thread.
 #include <algorithm>
 #include <climits>
+#include <cmath>
 
 #include "raster/rasterizer_p.hpp"
 #include "raster/supersample.hpp"
@@ -31,8 +35,21 @@ constexpr int kQueueMinBandRows = 8;
 constexpr double kMinQueuedFillWork = 800;
 // Recorded fills: composited pixels per unit of work, as band_work counts the area inside.
 constexpr double kRecordedPixelsPerUnit = 16;
-// Memory the queue may hold (edge tables and recordings) before fill_queued runs it.
+// Memory the queue may hold (outlines, edge tables and recordings) before fill_queued runs it.
 constexpr std::size_t kQueueBudgetBytes = std::size_t{16} << 20;
+// Building the queue's fills: chunks of consecutive fills per thread, several so that the threads finish together.
+constexpr int kBuildChunksPerThread = 8;
+
+// band_work's estimate (sweep.cpp) from an outline before it is built: the same sums over the segments as they come,
+// unclipped. It only decides whether a fill waits in the queue, and whether the queue is worth threads.
+double outline_work(const Polylines& lines) {
+  double outline = 0, signed_area = 0;
+  lines.for_each_segment([&](Point p, Point q) {
+    outline += std::abs(q.y - p.y) + std::abs(q.x - p.x);
+    signed_area += 0.5 * (p.x + q.x) * (q.y - p.y);
+  });
+  return outline + std::abs(signed_area) / kRecordedPixelsPerUnit;
+}
 
 }  // namespace
 
@@ -67,8 +84,10 @@ void CoverageRecording::clear() {
 std::size_t CoverageRecording::bytes() const { return calls_.size() * sizeof(Call) + values_.size() * sizeof(float); }
 
 std::size_t QueuedFill::bytes() const {
-  return edges.size() * sizeof(Edge) + (order.size() + bucket_start.size()) * sizeof(std::uint32_t) +
-         recording.bytes();
+  // An unbuilt fill counts the edges it will have (about one per point) with its outline.
+  const std::size_t edge_bytes = kind == Kind::Unbuilt ? lines.points.size() * sizeof(Edge) : edges.size() * sizeof(Edge);
+  return lines.points.size() * sizeof(Point) + lines.ends.size() * sizeof(std::uint32_t) + lines.closed.size() +
+         edge_bytes + (order.size() + bucket_start.size()) * sizeof(std::uint32_t) + recording.bytes();
 }
 
 void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
@@ -94,26 +113,11 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
     return;
   }
   if (!recorded) {
-    build_edges(lines, width, height);
-    if (edges_.empty()) return;
-    q.work = band_work();
+    q.work = outline_work(lines);
     if (queued_ == 0 && q.work < kMinQueuedFillWork) {
-      sweep_edges(rule, aa, width, sink);
+      build_edges(lines, width, height);
+      if (!edges_.empty()) sweep_edges(rule, aa, width, sink);
       return;
-    }
-    if (sample_pattern(aa).grid > 0) {
-      q.kind = QueuedFill::Kind::Sampled;
-    } else if (aa == AntiAlias::None) {
-      bucket_edges(true);
-      q.kind = QueuedFill::Kind::Aliased;
-    } else {
-      edge_columns(q.x_base, q.columns);
-      if (fits_dense(q.columns)) {
-        q.kind = QueuedFill::Kind::Dense;
-      } else {
-        bucket_edges(false);
-        q.kind = QueuedFill::Kind::Analytic;
-      }
     }
   }
   if (recorded && q.recording.empty()) return;  // nothing visible
@@ -124,35 +128,52 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
     if (recorded) {
       q.recording.replay(q.recording.y_min(), q.recording.y_max(), sink);
     } else {
-      sweep_edges(rule, aa, width, sink);
+      build_edges(lines, width, height);
+      if (!edges_.empty()) sweep_edges(rule, aa, width, sink);
     }
     return;
   }
+  q.edges.clear();
+  q.order.clear();
+  q.bucket_start.clear();
   if (recorded) {
     q.kind = QueuedFill::Kind::Recorded;
     q.y_min = q.recording.y_min();
     q.y_max = q.recording.y_max();
     q.work = static_cast<double>(q.recording.calls()) +
              static_cast<double>(q.recording.pixels()) / kRecordedPixelsPerUnit;
-    q.edges.clear();
-    q.order.clear();
-    q.bucket_start.clear();
+    q.lines.clear();
   } else {
-    // The table moves into the entry; the rasterizer keeps the entry's old buffers for the next fill.
-    q.y_min = y_min_;
-    q.y_max = y_max_;
-    q.edges.swap(edges_);
-    q.order.swap(order_);
-    q.bucket_start.swap(bucket_start_);
-    if (q.kind == QueuedFill::Kind::Dense || q.kind == QueuedFill::Kind::Sampled) {
-      q.order.clear();  // not bucketed: what came over is an earlier fill's table
-      q.bucket_start.clear();
-    }
+    q.kind = QueuedFill::Kind::Unbuilt;  // built by flush(), on the pool's threads
+    q.height = height;
+    q.y_min = q.y_max = 0;
+    q.lines = lines;  // a copy into the entry's own vectors (they keep their capacity from flush to flush)
   }
   ++queued_;
   queued_bytes_ += q.bytes();
   queued_work_ += q.work;
   if (queued_bytes_ > kQueueBudgetBytes) flush();
+}
+
+void RasterizerImpl::build_queued(QueuedFill& q, BandScratch& s) const {
+  // The choices fill() makes for a fill drawn at once, on the same edges, so the two draw the same bits.
+  detail::build_edges(q.lines, q.width, q.height, q.edges, q.y_min, q.y_max);
+  if (q.edges.empty() || q.y_max <= q.y_min) {
+    q.kind = QueuedFill::Kind::Empty;
+  } else if (sample_pattern(q.aa).grid > 0) {
+    q.kind = QueuedFill::Kind::Sampled;
+  } else if (q.aa == AntiAlias::None) {
+    detail::bucket_edges(q.edges, q.y_min, q.y_max, true, q.order, q.bucket_start, s.bucket);
+    q.kind = QueuedFill::Kind::Aliased;
+  } else {
+    edge_columns(q.edges, q.x_base, q.columns);
+    if (fits_dense(q.edges, q.y_min, q.y_max, q.columns, dense_limit_)) {
+      q.kind = QueuedFill::Kind::Dense;
+    } else {
+      detail::bucket_edges(q.edges, q.y_min, q.y_max, false, q.order, q.bucket_start, s.bucket);
+      q.kind = QueuedFill::Kind::Analytic;
+    }
+  }
 }
 
 void RasterizerImpl::run_queued_band(int band, BandScratch& s) {
@@ -177,16 +198,47 @@ void RasterizerImpl::run_queued_band(int band, BandScratch& s) {
       case QueuedFill::Kind::Recorded:
         q.recording.replay(y0, y1, *q.sink);
         break;
+      case QueuedFill::Kind::Unbuilt:  // built before any band runs
+      case QueuedFill::Kind::Empty:    // in no band's list
+        break;
     }
   }
 }
 
 void RasterizerImpl::flush() {
   if (queued_ == 0) return;
+  // First the edges of the fills that wait unbuilt: chunks of consecutive fills on the pool's threads.
+  auto build = [&](std::size_t from, std::size_t to, BandScratch& s) {
+    for (std::size_t i = from; i < to; ++i) {
+      if (queue_[i].kind == QueuedFill::Kind::Unbuilt) build_queued(queue_[i], s);
+    }
+  };
+  const std::size_t chunks = pool_ && queued_work_ >= kMinQueuedFillWork
+                                 ? std::min(queued_, static_cast<std::size_t>(pool_->threads() * kBuildChunksPerThread))
+                                 : 1;
+  if (chunks <= 1) {
+    build(0, queued_, bands_[0]);
+  } else {
+    auto job = [&](int chunk, int worker) {
+      const auto c = static_cast<std::size_t>(chunk);
+      build(queued_ * c / chunks, queued_ * (c + 1) / chunks, bands_[static_cast<std::size_t>(worker)]);
+    };
+    pool_->run(static_cast<int>(chunks), job);
+  }
+  auto visible = [](const QueuedFill& q) { return q.y_max > q.y_min; };  // Empty fills (and none else) have no rows
   int top = INT_MAX, bottom = INT_MIN;
   for (std::size_t i = 0; i < queued_; ++i) {
+    if (!visible(queue_[i])) continue;
     top = std::min(top, queue_[i].y_min);
     bottom = std::max(bottom, queue_[i].y_max);
+  }
+  if (top >= bottom) {  // nothing inside the image
+    for (std::size_t i = 0; i < queued_; ++i) queue_[i].sink.reset();
+    queued_ = 0;
+    queued_bytes_ = 0;
+    queued_work_ = 0;
+    last_flush_bands_ = 1;
+    return;
   }
   const int rows = bottom - top;
   int bands = 1;
@@ -207,6 +259,7 @@ void RasterizerImpl::flush() {
   };
   band_first_.assign(static_cast<std::size_t>(bands) + 1, 0);
   for (std::size_t i = 0; i < queued_; ++i) {
+    if (!visible(queue_[i])) continue;
     std::size_t first = 0, last = 0;
     bands_of(queue_[i], first, last);
     for (std::size_t b = first; b < last; ++b) ++band_first_[b + 1];
@@ -215,6 +268,7 @@ void RasterizerImpl::flush() {
   band_entries_.resize(band_first_.back());
   cursor_.assign(band_first_.begin(), band_first_.end() - 1);
   for (std::size_t i = 0; i < queued_; ++i) {
+    if (!visible(queue_[i])) continue;
     std::size_t first = 0, last = 0;
     bands_of(queue_[i], first, last);
     for (std::size_t b = first; b < last; ++b) band_entries_[cursor_[b]++] = static_cast<std::uint32_t>(i);

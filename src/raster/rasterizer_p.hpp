@@ -23,6 +23,36 @@ struct EdgeTableView {
   int y_min, y_max;
 };
 
+/// Scratch of bucket_edges (a counting sort), kept between calls so that it allocates nothing in steady state.
+struct BucketScratch {
+  std::vector<std::uint32_t> edge_row, cursor;
+};
+
+// Edge building and the edge table (edges.cpp): free functions, so that the fill queue can build many fills' tables
+// on several threads at once, each into its own vectors.
+
+/// Polylines -> edges clipped to [0, width] x [0, height] (top to bottom, with winding), and the rows
+/// [y_min, y_max) they touch.
+void build_edges(const Polylines& lines, int width, int height, std::vector<Edge>& edges, int& y_min, int& y_max);
+/// Segment p -> q clipped as build_edges clips it, appended to `edges`.
+void add_clipped_segment(std::vector<Edge>& edges, Point p, Point q, int width, int height);
+/// The rows [y_min, y_max) that clipped `edges` touch.
+void row_range(const std::vector<Edge>& edges, int height, int& y_min, int& y_max);
+/// The edge table: edges bucketed by first row (analytic: floor(y0); aliased, by_sample_row: ceil(y0 - 0.5)).
+void bucket_edges(const std::vector<Edge>& edges, int y_min, int y_max, bool by_sample_row,
+                  std::vector<std::uint32_t>& order, std::vector<std::uint32_t>& bucket_start, BucketScratch& scratch);
+
+// Measures of an edge list (sweep.cpp).
+
+/// The edges' summed height and width: about the number of cells they touch.
+double outline_cells(const std::vector<Edge>& edges);
+/// The work estimate behind banding (units of about 10 ns).
+double band_work(const std::vector<Edge>& edges);
+/// The cells [x_base, x_base + columns) that (non-empty) `edges` can write.
+void edge_columns(const std::vector<Edge>& edges, int& x_base, int& columns);
+/// Whether `edges` (rows [y_min, y_max), `columns` columns) take the dense sweep: small paths, a few thousand cells.
+bool fits_dense(const std::vector<Edge>& edges, int y_min, int y_max, int columns, std::int64_t dense_limit);
+
 /// Coverage calls kept for later (a queued rectangle: cheaper computed at once than kept as edges), replayed row
 /// range by row range. Calls are kept in the order they came, which is increasing y.
 class CoverageRecording final : public CoverageSink {
@@ -56,14 +86,17 @@ class CoverageRecording final : public CoverageSink {
 /// rasterizer's own buffers are free for the next fill. Entries are reused from flush to flush (their vectors keep
 /// their capacity).
 struct QueuedFill {
-  enum class Kind : std::uint8_t { Analytic, Aliased, Sampled, Dense, Recorded };
+  // Unbuilt: only `lines` so far; flush() builds the edges (on the pool's threads) and picks one of the kinds after
+  // it (Empty: no edge inside the image).
+  enum class Kind : std::uint8_t { Unbuilt, Empty, Analytic, Aliased, Sampled, Dense, Recorded };
   Kind kind = Kind::Analytic;
+  Polylines lines;  // Unbuilt: the fill's outline, as fill_queued got it
   int x_base = 0, columns = 0;  // Dense: the cells the edges reach (edge_columns)
   FillRule rule = FillRule::NonZero;
   AntiAlias aa = AntiAlias::Analytic;
-  int width = 0;
-  int y_min = 0, y_max = 0;  // rows the fill touches
-  double work = 0;           // band_work's estimate
+  int width = 0, height = 0;
+  int y_min = 0, y_max = 0;  // rows the fill touches (once built)
+  double work = 0;           // band_work's estimate (of the outline while unbuilt)
   std::vector<Edge> edges;   // Analytic / Aliased / Sampled / Dense
   std::vector<std::uint32_t> order, bucket_start;  // Analytic / Aliased: the edge table
   CoverageRecording recording;                      // Recorded
@@ -109,12 +142,13 @@ class RasterizerImpl {
   bool exact_within_budget(int height);
   /// One axis-aligned rectangle: its coverage without a sweep (rect.cpp). False when `lines` is not one.
   bool fill_rect(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
-  void build_edges(const Polylines& lines, int width, int height);
+  void build_edges(const Polylines& lines, int width, int height) {
+    detail::build_edges(lines, width, height, edges_, y_min_, y_max_);
+  }
   /// The sweep of the mode over edges_ (built; not Exact's boundary sweep), in bands where they pay.
   void sweep_edges(FillRule rule, AntiAlias aa, int width, CoverageSink& sink);
   void build_unclipped_edges(const Polylines& lines);
   void clip_pieces(int width, int height);
-  void compute_row_range(int height);
   struct Crossing {
     double x;
     std::uint32_t edge;
@@ -129,6 +163,7 @@ class RasterizerImpl {
     std::vector<std::uint64_t> touched;   // analytic sweep: one bit per cell written in the current row
     std::vector<float> coverage;          // analytic sweep: coverage handed to the sink
     std::vector<double> dense_block;      // queued dense fills: rows x columns of cells, zero between fills
+    BucketScratch bucket;                 // building queued fills
   };
   /// How many bands rows [y_min_, y_max_) of edges_ are cut into: 1 without threads, for a sink that wants its
   /// calls in order, or where the fill is too small for bands to pay (estimated from the edges).
@@ -147,21 +182,16 @@ class RasterizerImpl {
                                  BandScratch& s, CoverageSink& sink);
   static void sweep_analytic_band(const EdgeTableView& table, FillRule rule, int width, int y_from, int y_to,
                                   BandScratch& s, CoverageSink& sink);
-  /// The work estimate behind band_count (units of about 10 ns).
-  double band_work() const;
-  /// The edges' summed height and width: about the number of cells they touch.
-  double outline_cells() const;
   void sweep_analytic(FillRule rule, int width, CoverageSink& sink);
   void sweep_sampled(FillRule rule, AntiAlias aa, int width, CoverageSink& sink);
-  void edge_columns(int& x_base, int& columns) const;
   bool sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink);
-  /// Whether edges_ take the dense sweep with `columns` columns (small paths: a few thousand cells).
-  bool fits_dense(int columns) const;
   /// The dense sweep of rows [y_from, y_to) of a queued fill, on one thread.
   static void sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s);
-  void bucket_edges(bool by_sample_row);
-  void add_edge(Point top, Point bottom, int winding);
-  void add_clipped_segment(Point p, Point q, int width, int height);
+  void bucket_edges(bool by_sample_row) {
+    detail::bucket_edges(edges_, y_min_, y_max_, by_sample_row, order_, bucket_start_, bands_[0].bucket);
+  }
+  /// Builds an Unbuilt entry of the queue (its edges, its kind, its table) with one thread's scratch.
+  void build_queued(QueuedFill& q, BandScratch& s) const;
 
   std::vector<std::int64_t> budget_rows_;    // exact budget: active-edge count changes per row
   std::vector<std::uint32_t> budget_order_;  // exact budget: edges by top
@@ -170,8 +200,7 @@ class RasterizerImpl {
   int y_min_ = 0, y_max_ = 0;               // rows touched by edges_, [y_min_, y_max_)
   std::vector<std::uint32_t> bucket_start_;  // edge table: edges starting in row r are order_[bucket_start_[r-y_min_] ..]
   std::vector<std::uint32_t> order_;
-  std::vector<std::uint32_t> edge_row_;      // first row of each edge (relative to y_min_)
-  std::vector<std::uint32_t> cursor_;        // fill positions while bucketing
+  std::vector<std::uint32_t> cursor_;        // flush: fill positions in band_entries_
   std::vector<BandScratch> bands_{1};       // per thread: the sweeps' row buffers
   std::unique_ptr<BandPool> pool_;           // set_threads(n > 1): the workers that sweep bands
   std::vector<float> row_coverage_;          // dense sweep: coverage handed to the sink

@@ -137,20 +137,20 @@ constexpr std::int64_t kAlwaysDenseCells = 8192;
 constexpr double kDenseCellsPerOutline = 16;
 
 // The one choice of the dense sweep, for fills drawn at once and queued ones alike (both must take the same path).
-bool detail::RasterizerImpl::fits_dense(int columns) const {
-  if (edges_.empty() || dense_limit_ <= 0) return false;
-  const std::int64_t cells = static_cast<std::int64_t>(columns) * (y_max_ - y_min_);
-  if (cells > dense_limit_) return false;
+bool detail::fits_dense(const std::vector<Edge>& edges, int y_min, int y_max, int columns, std::int64_t dense_limit) {
+  if (edges.empty() || dense_limit <= 0) return false;
+  const std::int64_t cells = static_cast<std::int64_t>(columns) * (y_max - y_min);
+  if (cells > dense_limit) return false;
   if (cells > kAlwaysDenseCells) {
     // A larger block pays only where edges pass through a good share of it: a thin sliver across a large box
     // would have the dense sweep walk mostly empty cells that the row sweep skips.
-    if (static_cast<double>(cells) > kDenseCellsPerOutline * outline_cells()) return false;
+    if (static_cast<double>(cells) > kDenseCellsPerOutline * outline_cells(edges)) return false;
   }
   return true;
 }
 
 bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink) {
-  if (!fits_dense(columns)) return false;
+  if (!fits_dense(edges_, y_min_, y_max_, columns, dense_limit_)) return false;
   const std::int64_t cells = static_cast<std::int64_t>(columns) * (y_max_ - y_min_);
   if (dense_block_.size() < static_cast<std::size_t>(cells)) dense_block_.assign(static_cast<std::size_t>(cells), 0.0);
   if (row_coverage_.size() < static_cast<std::size_t>(columns)) row_coverage_.resize(static_cast<std::size_t>(columns));
@@ -176,11 +176,11 @@ void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from
   });
 }
 
-// The columns edges_ reach: cells [x_base, x_base + columns) hold every cell an edge can write (the last edge's
+// The columns the edges reach: cells [x_base, x_base + columns) hold every cell an edge can write (the last edge's
 // cell and the one after it), so a running sum over them returns to 0 wherever the path closes inside the image.
-void detail::RasterizerImpl::edge_columns(int& x_base, int& columns) const {
-  double x_lo = edges_[0].x0, x_hi = x_lo;
-  for (const Edge& e : edges_) {
+void detail::edge_columns(const std::vector<Edge>& edges, int& x_base, int& columns) {
+  double x_lo = edges[0].x0, x_hi = x_lo;
+  for (const Edge& e : edges) {
     x_lo = std::min({x_lo, e.x0, e.x1});
     x_hi = std::max({x_hi, e.x0, e.x1});
   }
@@ -199,22 +199,22 @@ constexpr double kMinBandedWork = 800;   // below this, the fork and join cost m
 constexpr double kAreaPerUnit = 16;  // composited pixels per unit of work
 constexpr int kBandsPerThread = 8;   // several bands per thread: a thread that finishes early takes another
 
-double detail::RasterizerImpl::outline_cells() const {
+double detail::outline_cells(const std::vector<Edge>& edges) {
   double outline = 0;
-  for (const Edge& e : edges_) outline += (e.y1 - e.y0) + std::abs(e.x1 - e.x0);
+  for (const Edge& e : edges) outline += (e.y1 - e.y0) + std::abs(e.x1 - e.x0);
   return outline;
 }
 
-double detail::RasterizerImpl::band_work() const {
+double detail::band_work(const std::vector<Edge>& edges) {
   double signed_area = 0;
-  for (const Edge& e : edges_) signed_area += 0.5 * (e.x0 + e.x1) * (e.y1 - e.y0) * e.winding;
-  return outline_cells() + std::abs(signed_area) / kAreaPerUnit;
+  for (const Edge& e : edges) signed_area += 0.5 * (e.x0 + e.x1) * (e.y1 - e.y0) * e.winding;
+  return outline_cells(edges) + std::abs(signed_area) / kAreaPerUnit;
 }
 
 int detail::RasterizerImpl::band_count(const CoverageSink& sink) const {
   const int rows = y_max_ - y_min_;
   if (!pool_ || rows < 2 * kMinBandRows || !sink.takes_concurrent_rows()) return 1;
-  const double work = band_work();
+  const double work = band_work(edges_);
   if (work < kMinBandedWork) return 1;
   const int by_work = static_cast<int>(std::min(work / kWorkPerBand, double{BandPool::kMaxBands}));
   const int threads = pool_->threads();
@@ -259,7 +259,7 @@ void detail::RasterizerImpl::set_threads(int threads) {
 
 void detail::RasterizerImpl::sweep_analytic(FillRule rule, int width, CoverageSink& sink) {
   int x_base = 0, columns = 0;
-  edge_columns(x_base, columns);
+  edge_columns(edges_, x_base, columns);
   if (sweep_dense(rule, width, x_base, columns, sink)) return;
   bucket_edges(false);
   in_bands(band_count(sink), [&](int y0, int y1, BandScratch& s) {
