@@ -57,9 +57,9 @@ inline float coverage_of(double s) {
 //   p0 = a, p1 = a + b, p2 = (b + c) + a, p3 = (c + d) + (a + b); cell i gets sum + p_i; the sum moves on by p3.
 template <FillRule R>
 inline void sweep_block_scalar(double* cells, float* cov, int n, double& sum) {
-  double v[4] = {0, 0, 0, 0};
-  for (int i = 0; i < n; ++i) v[i] = cells[i];
-  const double p[4] = {v[0], v[0] + v[1], (v[1] + v[2]) + v[0], (v[2] + v[3]) + (v[0] + v[1])};
+  // Cells past n count as 0 (read one by one: a loop here would become a library call).
+  const double a = cells[0], b = n > 1 ? cells[1] : 0.0, c = n > 2 ? cells[2] : 0.0, d = n > 3 ? cells[3] : 0.0;
+  const double p[4] = {a, a + b, (b + c) + a, (c + d) + (a + b)};
   for (int i = 0; i < n; ++i) {
     cov[i] = coverage_of<R>(sum + p[i]);
     cells[i] = 0;
@@ -205,6 +205,16 @@ inline int next_clear(const std::uint64_t* bits, int from, int limit) {
   return std::min((w << 6) + std::countr_zero(word), limit);
 }
 
+// Zeroes words [w0, w1]. Most rows touch one or two words: stores, not the library call a loop becomes.
+inline void clear_words(std::uint64_t* bits, int w0, int w1) {
+  if (w1 - w0 < 2) {
+    bits[w0] = 0;
+    bits[w1] = 0;
+  } else {
+    std::fill(bits + w0, bits + w1 + 1, std::uint64_t{0});
+  }
+}
+
 // Untouched stretches shorter than this inside a run of touched cells are written into the run's coverage instead
 // of being a span of their own: one compositor call covers several edges.
 constexpr int kMergeGap = 24;
@@ -255,7 +265,7 @@ template <FillRule R>
     x = e;
   }
   if (run >= 0) flush(x);
-  for (int w = x_lo >> 6; w <= (x_hi >> 6); ++w) bits[w] = 0;
+  clear_words(bits, x_lo >> 6, x_hi >> 6);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
