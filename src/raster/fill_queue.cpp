@@ -24,9 +24,11 @@
 namespace vraster::detail {
 namespace {
 
-// Bands of the whole queue: several per thread, so that a thread that finishes early takes another, and not so
-// thin that every band repeats much set-up (each band starts the active list of every fill crossing its top).
-constexpr int kQueueBandsPerThread = 8;
+// Bands of the whole queue: two per thread, cut at equal shares of the estimated work (flush). Every band costs each
+// fill crossing it a start from cold edges and tables, so few bands pay: with two threads, two bands per thread
+// measured thin_slivers 1.66x and cubic_256 1.73x, eight bands per thread cut by rows 1.46x and 1.64x (docs/
+// performance.md, "Threads"). Two rather than one, so that a thread the system preempts holds less back.
+constexpr int kQueueBandsPerThread = 2;
 constexpr int kQueueMinBandRows = 8;
 // A fill of less work than this (band_work's units, about 10 ns each; the threshold of banding a fill alone) is
 // drawn at once on the caller's thread when nothing is queued: queued, a small fill costs 5-15 % more on one
@@ -246,12 +248,35 @@ void RasterizerImpl::flush() {
     bands = std::clamp(std::min(pool_->threads() * kQueueBandsPerThread, rows / kQueueMinBandRows), 1,
                        BandPool::kMaxBands);
   }
+  // Band tops at equal shares of the queue's work (each fill's estimate spread evenly over its rows): where fills
+  // crowd, bands are thinner, so that few bands balance the threads.
+  band_top_.assign(1, top);
+  if (bands > 1) {
+    row_work_.assign(static_cast<std::size_t>(rows) + 1, 0.0);
+    for (std::size_t i = 0; i < queued_; ++i) {
+      const QueuedFill& q = queue_[i];
+      if (!visible(q)) continue;
+      const double per_row = q.work / (q.y_max - q.y_min);
+      row_work_[static_cast<std::size_t>(q.y_min - top)] += per_row;
+      row_work_[static_cast<std::size_t>(q.y_max - top)] -= per_row;
+    }
+    double density = 0, total = 0;
+    for (int r = 0; r < rows; ++r) {  // row_work_[r]: the work of rows [top, top + r] once summed
+      density += row_work_[static_cast<std::size_t>(r)];
+      total += std::max(density, 0.0);
+      row_work_[static_cast<std::size_t>(r)] = total;
+    }
+    for (int r = 0, b = 1; r + 1 < rows && b < bands; ++r) {
+      if (row_work_[static_cast<std::size_t>(r)] >= total * b / bands) {
+        band_top_.push_back(top + r + 1);
+        while (b < bands && row_work_[static_cast<std::size_t>(r)] >= total * b / bands) ++b;
+      }
+    }
+  }
+  band_top_.push_back(bottom);
+  bands = static_cast<int>(band_top_.size()) - 1;
   last_flush_bands_ = bands;
   // Each band's list of the fills crossing it, in queue order (a band never looks at the others).
-  band_top_.resize(static_cast<std::size_t>(bands) + 1);
-  for (int b = 0; b <= bands; ++b) {
-    band_top_[static_cast<std::size_t>(b)] = top + static_cast<int>(std::int64_t{rows} * b / bands);
-  }
   auto bands_of = [&](const QueuedFill& q, std::size_t& first, std::size_t& last) {
     const auto tops = band_top_.begin();
     first = static_cast<std::size_t>(std::upper_bound(tops, band_top_.end(), q.y_min) - tops) - 1;
