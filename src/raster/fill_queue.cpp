@@ -183,6 +183,16 @@ void RasterizerImpl::run_queued_band(int band, BandScratch& s) {
   const int y_from = band_top_[b], y_to = band_top_[b + 1];
   for (std::uint32_t k = band_first_[b]; k < band_first_[b + 1]; ++k) {
     const QueuedFill& q = queue_[band_entries_[k]];
+    if (k + 1 < band_first_[b + 1]) {
+      // The next fill's entry, edges and tables are cold (other fills ran since they were built): ask for them now,
+      // while this fill runs.
+      const QueuedFill& next = queue_[band_entries_[k + 1]];
+      __builtin_prefetch(&next);
+      __builtin_prefetch(next.edges.data());
+      __builtin_prefetch(next.bucket_start.data());
+      __builtin_prefetch(next.order.data());
+      __builtin_prefetch(next.sink.get());
+    }
     const int y0 = std::max(y_from, q.y_min), y1 = std::min(y_to, q.y_max);
     switch (q.kind) {
       case QueuedFill::Kind::Analytic:
