@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
@@ -514,6 +515,42 @@ TEST(RasterContract, AnalyticCoverageIsExactlyZeroWhereNothingIsDrawn) {
         ASSERT_EQ(g.at(i % 16, i / 16), 0.f) << "seed " << seed << ", pixel " << i % 16 << "," << i / 16;
       }
     }
+  }
+}
+
+// A contour with a NaN or infinite point has no shape: it is skipped, and the other contours of the same fill draw
+// exactly as they do alone, in every mode and under every rule (polylines built by hand can hold such points;
+// flatten() refuses them).
+TEST(Raster, ContoursWithNonFinitePointsAreSkipped) {
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  Polylines good;
+  good.points = {{2.5, 1.25}, {13.75, 3.5}, {6.5, 14.0}};
+  good.ends = {3};
+  good.closed = {1};
+  const std::vector<std::vector<Point>> bad = {
+      {{1, 1}, {nan, 8}, {12, 12}}, {{-inf, 2}, {14, 7}, {3, inf}}, {{nan, nan}, {nan, nan}, {nan, nan}}};
+  for (const std::vector<Point>& contour : bad) {
+    Polylines both = good;
+    both.points.insert(both.points.end(), contour.begin(), contour.end());
+    both.ends.push_back(static_cast<std::uint32_t>(both.points.size()));
+    both.closed.push_back(1);
+    for (const AntiAlias aa : {AntiAlias::None, AntiAlias::Analytic, AntiAlias::Exact, AntiAlias::Ssaa4,
+                               AntiAlias::Msaa8}) {
+      for (const FillRule rule : {FillRule::EvenOdd, FillRule::NonZero, FillRule::NonExterior, FillRule::Negative}) {
+        CoverageGrid alone(16, 16), with_bad(16, 16);
+        Rasterizer r;
+        r.fill(good, rule, aa, 16, 16, alone);
+        r.fill(both, rule, aa, 16, 16, with_bad);
+        EXPECT_GT(alone.total(), 10.0);
+        EXPECT_EQ(alone.to_string(), with_bad.to_string()) << to_string(aa) << ", " << to_string(rule);
+        EXPECT_TRUE(with_bad.violations().empty());
+      }
+    }
+    std::vector<std::uint8_t> mask_alone(16 * 16), mask_with_bad(16 * 16);
+    Rasterizer r;
+    r.fill_mask(good, FillRule::NonZero, 16, 16, mask_alone.data(), 16);
+    r.fill_mask(both, FillRule::NonZero, 16, 16, mask_with_bad.data(), 16);
+    EXPECT_EQ(mask_alone, mask_with_bad);
   }
 }
 

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <set>
@@ -352,6 +353,43 @@ TEST(Threads, QueuedCoverageCallsAreTheSameRowByRow) {
       }
     }
   }
+}
+
+// Outlines with NaN or infinite points, or wholly outside the image, wait in the queue like any other (they are
+// built at flush): they draw what the same fill draws alone, and the fills around them are unchanged.
+TEST(Threads, QueuedFillsWithNonFiniteOrOffImagePointsDrawAsAlone) {
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  auto polyline = [](std::vector<Point> points) {
+    Polylines lines;
+    lines.points = std::move(points);
+    lines.ends = {static_cast<std::uint32_t>(lines.points.size())};
+    lines.closed = {1};
+    return lines;
+  };
+  Polylines big;
+  flatten(big_triangle(), Affine{}, FlattenOptions{}, big);
+  const std::vector<Polylines> frame = {
+      big,
+      polyline({{10, 10}, {nan, 200}, {250, 290}}),
+      polyline({{-inf, 5}, {290, 150}, {20, inf}}),
+      polyline({{-500, -500}, {-400, -300}, {-450, -100}}),   // left of and above the image
+      polyline({{5000, 10}, {6000, 200}, {5500, 290}}),       // right of it
+      big,
+  };
+  std::vector<CallRecorder> alone(frame.size()), queued(frame.size());
+  Rasterizer one, many;
+  many.set_threads(2);
+  for (std::size_t i = 0; i < frame.size(); ++i) {
+    one.fill(frame[i], FillRule::NonZero, AntiAlias::Analytic, kSide, kSide, alone[i]);
+    many.fill_queued(frame[i], FillRule::NonZero, AntiAlias::Analytic, kSide, kSide,
+                     std::make_unique<Forward>(queued[i]));
+  }
+  EXPECT_EQ(many.queued_fills(), frame.size());
+  many.flush();
+  EXPECT_GT(many.last_flush_bands(), 1);
+  for (std::size_t i = 0; i < frame.size(); ++i) EXPECT_TRUE(alone[i].rows == queued[i].rows) << "fill " << i;
+  EXPECT_FALSE(queued[0].rows.empty());
+  EXPECT_TRUE(queued[4].rows.empty());
 }
 
 // Calls that do not queue (a borrowed sink, hairlines, a mask, a gradient compositor, exact coverage) run after

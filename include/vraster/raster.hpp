@@ -115,7 +115,8 @@ class Rasterizer {
   /// handing coverage to `sink`. Geometry outside that rectangle costs almost nothing: edges are clipped to it
   /// (parts left of it become vertical edges at x = 0 so they keep their winding). NonExterior is the exception:
   /// whether a region reaches the outside can be decided far from the image, so its boundary is found on the
-  /// unclipped edges first (cost grows with all the geometry), then clipped.
+  /// unclipped edges first (cost grows with all the geometry), then clipped. A contour with a NaN or infinite
+  /// point has no shape and is skipped (flatten() never makes one; polylines built by hand may hold them).
   void fill(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
 
   /// Analytic coverage of `lines` under `rule` straight into an 8-bit mask of width x height pixels: every byte

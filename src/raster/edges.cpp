@@ -15,6 +15,21 @@ void add_edge(std::vector<Edge>& edges, Point top, Point bottom, int winding) {
   edges.push_back({top.x, top.y, bottom.x, bottom.y, std::isfinite(dxdy) ? dxdy : 0.0, winding});
 }
 
+// Calls f(p, q) for every segment of the contours whose points are all finite: a contour with a NaN or infinite
+// point has no shape, and is skipped whole (dropping only its bad segments would leave it open).
+template <class F>
+void for_each_finite_segment(const Polylines& lines, F&& f) {
+  for (std::size_t k = 0; k < lines.contour_count(); ++k) {
+    const auto pts = lines.contour(k);
+    const std::size_t n = pts.size();
+    if (n < 2) continue;
+    bool finite = true;
+    for (const Point& p : pts) finite = finite && std::isfinite(p.x) && std::isfinite(p.y);
+    if (!finite) continue;
+    for (std::size_t i = 0; i < n; ++i) f(pts[i], pts[i + 1 == n ? 0 : i + 1]);
+  }
+}
+
 }  // namespace
 
 // Clips segment p -> q to the device rectangle [0, width] x [0, height] and records what is left:
@@ -74,11 +89,18 @@ void detail::build_edges(const Polylines& lines, int width, int height, std::vec
   }
   // Only clip when something lies outside the image: most paths don't, and then every segment is an edge as is.
   double x_lo = lines.points[0].x, x_hi = x_lo, y_lo = lines.points[0].y, y_hi = y_lo;
+  bool finite = true;
   for (const Point& p : lines.points) {
     x_lo = std::min(x_lo, p.x);
     x_hi = std::max(x_hi, p.x);
     y_lo = std::min(y_lo, p.y);
     y_hi = std::max(y_hi, p.y);
+    finite = finite && std::isfinite(p.x) && std::isfinite(p.y);
+  }
+  if (!finite) {  // the contours without a NaN or infinite point, clipped (the bounds above are not theirs)
+    for_each_finite_segment(lines, [&](Point p, Point q) { add_clipped_segment(edges, p, q, width, height); });
+    row_range(edges, height, y_min, y_max);
+    return;
   }
   const bool inside = x_lo >= 0 && y_lo >= 0 && x_hi <= width && y_hi <= height;
   lines.for_each_segment([&](Point p, Point q) {
@@ -113,7 +135,7 @@ void detail::row_range(const std::vector<Edge>& edges, int height, int& y_min, i
 void detail::RasterizerImpl::build_unclipped_edges(const Polylines& lines) {
   edges_.clear();
   horizontals_.clear();
-  lines.for_each_segment([&](Point p, Point q) {
+  for_each_finite_segment(lines, [&](Point p, Point q) {
     if (p.y == q.y) {
       if (p.x != q.x) horizontals_.push_back({p.x, p.y, q.x, q.y, 0.0, 0});
     } else if (q.y > p.y) {

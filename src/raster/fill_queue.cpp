@@ -50,7 +50,8 @@ double outline_work(const Polylines& lines) {
     outline += std::abs(q.y - p.y) + std::abs(q.x - p.x);
     signed_area += 0.5 * (p.x + q.x) * (q.y - p.y);
   });
-  return outline + std::abs(signed_area) / kRecordedPixelsPerUnit;
+  const double work = outline + std::abs(signed_area) / kRecordedPixelsPerUnit;
+  return std::isfinite(work) ? work : 0.0;  // points no edge can come from (NaN) must not poison the queue's sums
 }
 
 }  // namespace

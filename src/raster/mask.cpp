@@ -260,6 +260,7 @@ void detail::RasterizerImpl::fill_mask(const Polylines& lines, FillRule rule, in
   if (stride < width) throw Error("fill_mask: the stride is smaller than the width");
   // Bounds of the points: rows to resolve, and whether everything lies inside the mask.
   double x_lo = 0, x_hi = 0, y_lo = 0, y_hi = 0;
+  bool finite = true;
   if (!lines.points.empty()) {
     x_lo = x_hi = lines.points[0].x;
     y_lo = y_hi = lines.points[0].y;
@@ -268,11 +269,13 @@ void detail::RasterizerImpl::fill_mask(const Polylines& lines, FillRule rule, in
       x_hi = std::max(x_hi, p.x);
       y_lo = std::min(y_lo, p.y);
       y_hi = std::max(y_hi, p.y);
+      finite = finite && std::isfinite(p.x) && std::isfinite(p.y);
     }
   }
   const double w = width, h = height;
-  const bool inside = x_lo >= -kBorderSlack && y_lo >= -kBorderSlack && x_hi <= w + kBorderSlack &&
-                      y_hi <= h + kBorderSlack;  // false for NaN too
+  // Not finite: the general sweep, which skips the contours with a NaN or infinite point.
+  const bool inside = finite && x_lo >= -kBorderSlack && y_lo >= -kBorderSlack && x_hi <= w + kBorderSlack &&
+                      y_hi <= h + kBorderSlack;
   // Cells per row: every cell a segment can write (x = width writes cell width + 1), padded to whole blocks.
   const std::int64_t padded_cells = (std::int64_t{width} + 2 + kCellBlock - 1) / kCellBlock * kCellBlock;
   const int row_lo = inside ? static_cast<int>(std::max(y_lo, 0.0)) : 0;
