@@ -9,30 +9,15 @@
 namespace vraster {
 namespace {
 
-// 8-bit pixels are handled as one uint32 (R in the low byte) with two channels per multiply, the layout compilers
-// vectorise well. scale8(px, f) = px * f / 255 per channel, rounded to nearest (exact for all inputs).
-inline std::uint32_t scale8(std::uint32_t px, std::uint32_t f) {
-  std::uint32_t rb = (px & 0x00FF00FFu) * f + 0x00800080u;
-  rb = ((rb + ((rb >> 8) & 0x00FF00FFu)) >> 8) & 0x00FF00FFu;
-  std::uint32_t ag = ((px >> 8) & 0x00FF00FFu) * f + 0x00800080u;
-  ag = ((ag + ((ag >> 8) & 0x00FF00FFu)) >> 8) & 0x00FF00FFu;
-  return rb | (ag << 8);
-}
+using detail::over8;   // blend.hpp: the 8-bit source-over arithmetic shared with the paint compositor
+using detail::scale8;
 
-inline std::uint32_t over8(std::uint32_t src, std::uint32_t dst) { return src + scale8(dst, 255u - (src >> 24)); }
-
-// The hot loops, compiled twice: for AVX2 and for any x86-64, picked at load time (GCC function multiversioning).
+// The hot loop, compiled twice: for AVX2 and for any x86-64, picked at load time (GCC function multiversioning).
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define VRASTER_CLONES __attribute__((target_clones("avx2", "default")))
 #else
 #define VRASTER_CLONES
 #endif
-
-// Source-over of one premultiplied colour on n pixels.
-VRASTER_CLONES void blend_span8(std::uint32_t* px, int n, std::uint32_t src) {
-  const std::uint32_t inv = 255u - (src >> 24);
-  for (int i = 0; i < n; ++i) px[i] = src + scale8(px[i], inv);
-}
 
 // Source-over of a colour scaled by per-pixel coverage.
 VRASTER_CLONES void blend_row8(std::uint32_t* px, int n, const float* coverage, std::uint32_t color) {
@@ -86,7 +71,7 @@ void SolidCompositor<T>::span8(int y, int x0, int x1, float coverage) {
     detail::store8(px, n, color);
     return;
   }
-  blend_span8(px, n, cov == 255 ? color : scale8(color, cov));
+  detail::over8_constant(px, n, cov == 255 ? color : scale8(color, cov));
 }
 
 template <class T>

@@ -246,11 +246,8 @@ void RasterizerImpl::flush() {
     bottom = std::max(bottom, queue_[i].y_max);
   }
   if (top >= bottom) {  // nothing inside the image
-    for (std::size_t i = 0; i < queued_; ++i) queue_[i].sink.reset();
-    queued_ = 0;
-    queued_bytes_ = 0;
-    queued_work_ = 0;
     last_flush_bands_ = 1;
+    empty_queue();
     return;
   }
   const int rows = bottom - top;
@@ -315,6 +312,10 @@ void RasterizerImpl::flush() {
     auto job = [&](int band, int worker) { run_queued_band(band, bands_[static_cast<std::size_t>(worker)]); };
     pool_->run(bands, job);
   }
+  empty_queue();
+}
+
+void RasterizerImpl::empty_queue() {
   for (std::size_t i = 0; i < queued_; ++i) queue_[i].sink.reset();
   queued_ = 0;
   queued_bytes_ = 0;

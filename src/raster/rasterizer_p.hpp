@@ -219,6 +219,8 @@ class RasterizerImpl {
   std::vector<std::uint32_t> band_first_;    // flush: band b runs entries band_entries_[band_first_[b] .. [b + 1])
   std::vector<std::uint32_t> band_entries_;
   void run_queued_band(int band, BandScratch& s);
+  /// After a flush: the entries' sinks released (their buffers kept for the next fills), the counts at zero.
+  void empty_queue();
 };
 
 }  // namespace vraster::detail
