@@ -75,6 +75,7 @@ class Path {
   Path& atomically(F&& build);
   void ensure_contour();
   void arc_segments(double rx, double ry, double phi, double theta1, double dtheta);
+  void reserve_more(std::size_t verbs, std::size_t points);
 
   std::vector<Verb> verbs_;
   std::vector<Point> points_;

@@ -100,6 +100,14 @@ Path& Path::atomically(F&& build) {
   return *this;
 }
 
+// Room for a shape's verbs and points in one allocation per vector (a shape on an empty path would otherwise grow
+// it several times), growing geometrically so that many shapes appended to one path stay linear.
+void Path::reserve_more(std::size_t verbs, std::size_t points) {
+  if (verbs_.capacity() < verbs_.size() + verbs) verbs_.reserve(std::max(verbs_.size() + verbs, 2 * verbs_.size()));
+  if (points_.capacity() < points_.size() + points)
+    points_.reserve(std::max(points_.size() + points, 2 * points_.size()));
+}
+
 void Path::ensure_contour() {
   if (!contour_open_) {
     verbs_.push_back(Verb::Move);
@@ -175,6 +183,7 @@ void Path::arc_segments(double rx, double ry, double phi, double theta1, double 
   const double k = 4.0 / 3.0 * std::tan(step / 4);
   const double cs = std::cos(phi), sn = std::sin(phi);
   const Point start = current_;
+  reserve_more(static_cast<std::size_t>(n) + 1, 3 * static_cast<std::size_t>(n));  // the cubics and a close
   auto point_at = [&](double t) {
     const double half = std::sin((t - theta1) / 2), mid = (t + theta1) / 2;
     const double x = -2 * rx * std::sin(mid) * half, y = 2 * ry * std::cos(mid) * half;
@@ -253,6 +262,7 @@ Path& Path::arc_to(double rx, double ry, double x_rotation_degrees, bool large_a
 Path& Path::add_rect(const Rect& r) {
   check_finite(Point{r.x0, r.y0}, "add_rect");
   check_finite(Point{r.x1, r.y1}, "add_rect");
+  reserve_more(5, 4);
   move_to({r.x0, r.y0});
   line_to({r.x1, r.y0});
   line_to({r.x1, r.y1});
@@ -288,6 +298,9 @@ Path& Path::add_ellipse(Point c, double rx, double ry) {
   check_finite(ry, "add_ellipse");
   rx = std::abs(rx);
   ry = std::abs(ry);
+  // A move, the arc's cubics (kMaxArcStep each), a close.
+  const auto cubics = static_cast<std::size_t>(std::ceil(2 * kPi / kMaxArcStep - 1e-9));
+  reserve_more(cubics + 2, 3 * cubics + 1);
   return atomically([&] {
     move_to({c.x + rx, c.y});
     arc_segments(rx, ry, 0, 0, 2 * kPi);
