@@ -191,24 +191,7 @@ TEST(HostileMessages, MillionIgnoredElementsGiveASummary) {
   EXPECT_EQ(doc.warnings[20], "1:184: ... and 99980 more warnings about unsupported elements (not shown)");
 }
 
-// ---- use: nested instances multiply, uses written in the file do not ----
-
-TEST(HostileLimits, NestedUsesStopAtTheInstanceLimit) {
-  // Six levels of ten uses of the level below: 10^6 instances. The limit stops it with a message that says why.
-  std::string body = "<defs><rect id=\"u0\" width=\"1\" height=\"1\"/>";
-  for (int level = 1; level <= 6; ++level) {
-    body += "<g id=\"u" + std::to_string(level) + "\">";
-    for (int i = 0; i < 10; ++i) body += "<use href=\"#u" + std::to_string(level - 1) + "\"/>";
-    body += "</g>";
-  }
-  body += "</defs><use href=\"#u6\"/>";
-  try {
-    parse_svg(kOpen + body + "</svg>", "hostile.svg");
-    ADD_FAILURE() << "no error for nested uses";
-  } catch (const ParseError& e) {
-    EXPECT_NE(e.message().find("too many <use> instances"), std::string::npos) << e.what();
-  }
-}
+// ---- use: nested instances multiply (SvgTree.BillionLaughsOfUsesStops), uses written in the file do not ----
 
 TEST(HostileLimits, ManyUsesWrittenInTheFileAreNotALaugh) {
   // A scatter plot as drawing programs export it: one marker shape, one use per point, more uses than the nested

@@ -15,6 +15,8 @@ struct Fake {
   std::string name;
   std::map<std::string, std::string> attributes;
   const Fake* previous = nullptr;
+  const Fake* next = nullptr;
+  bool root = false;
 };
 
 struct FakeAdapter {
@@ -26,6 +28,8 @@ struct FakeAdapter {
     return true;
   }
   static const Fake* previous_element(const Fake* n) { return n->previous; }
+  static const Fake* next_element(const Fake* n) { return n->next; }
+  static bool is_root(const Fake* n) { return n->root; }
   static bool is_null(const Fake* n) { return n == nullptr; }
 };
 
@@ -69,14 +73,22 @@ TEST(SvgCss, SpecificityCountsIdsClassesTypes) {
   EXPECT_EQ(specificity("rect[fill]:first-child"), 0x201u);
   EXPECT_EQ(specificity("#x"), 0x10000u);
   EXPECT_EQ(specificity("g > #x.a.b rect"), 0x10202u);
+  // :not() counts its most specific argument, not itself (Selectors 4, 17); other pseudo-classes count as classes.
+  EXPECT_EQ(specificity("rect:not(.a, #b)"), 0x10001u);
+  EXPECT_EQ(specificity(":not(rect)"), 1u);
+  EXPECT_EQ(specificity(":root > g + rect:last-child"), 0x202u);
 }
 
 TEST(SvgCss, UnsupportedSelectorsAreRejected) {
   Selector s;
-  EXPECT_FALSE(parse_selector("a:hover", s));
+  EXPECT_FALSE(parse_selector("a:nth-child(2)", s));
   EXPECT_FALSE(parse_selector("a::before", s));
-  EXPECT_FALSE(parse_selector("a + b", s));
+  EXPECT_FALSE(parse_selector("a:first-child(1)", s));
   EXPECT_FALSE(parse_selector("a ~ b", s));
+  EXPECT_FALSE(parse_selector("a:not(b c)", s));  // :not takes compounds only
+  EXPECT_FALSE(parse_selector("a:not()", s));
+  EXPECT_FALSE(parse_selector("a:not(.x", s));
+  EXPECT_FALSE(parse_selector("a +", s));
   EXPECT_FALSE(parse_selector("a >", s));
   EXPECT_FALSE(parse_selector("[x=]", s));
   EXPECT_FALSE(parse_selector("", s));
@@ -125,6 +137,80 @@ TEST(SvgCss, DescendantAndChildCombinators) {
   EXPECT_TRUE(match("svg > g rect", path));
 }
 
+TEST(SvgCss, StructuralPseudoClassesNotAndUserActions) {
+  Fake svg{"svg", {}};
+  svg.root = true;
+  Fake a{"rect", {{"class", "x"}}}, b{"circle", {}}, c{"rect", {}};
+  a.next = &b;
+  b.previous = &a, b.next = &c;
+  c.previous = &b;
+  const Fake only{"path", {}};
+  Fake link{"a", {{"xlink:href", "#t"}}};
+  const std::vector<const Fake*> pa{&svg, &a}, pb{&svg, &b}, pc{&svg, &c}, po{&svg, &only}, pl{&svg, &link};
+  EXPECT_TRUE(match("svg:root", {&svg}));
+  EXPECT_FALSE(match(":root", pa));
+  EXPECT_TRUE(match(":root > rect", pa));
+  EXPECT_TRUE(match("rect:last-child", pc));
+  EXPECT_FALSE(match("rect:last-child", pa));
+  EXPECT_TRUE(match(":only-child", po));
+  EXPECT_FALSE(match(":only-child", pb));
+  EXPECT_TRUE(match("rect:not(.x)", pc));
+  EXPECT_FALSE(match("rect:not(.x)", pa));
+  EXPECT_FALSE(match(":not(rect, circle)", pb));
+  EXPECT_TRUE(match(":not(rect, circle)", po));
+  EXPECT_TRUE(match(":not(:hover)", pa));  // nothing is hovered in a still image
+  EXPECT_FALSE(match("rect:hover", pa));
+  EXPECT_TRUE(match("a:link", pl));
+  EXPECT_FALSE(match(":any-link", pa));
+}
+
+TEST(SvgCss, NextSiblingCombinator) {
+  Fake svg{"svg", {}};
+  svg.root = true;
+  Fake g{"g", {{"class", "k"}}}, a{"rect", {{"class", "x"}}}, b{"circle", {}}, c{"rect", {}};
+  a.next = &b;
+  b.previous = &a, b.next = &c;
+  c.previous = &b;
+  const std::vector<const Fake*> pa{&svg, &g, &a}, pb{&svg, &g, &b}, pc{&svg, &g, &c};
+  EXPECT_TRUE(match("rect + circle", pb));
+  EXPECT_TRUE(match(".x + circle + rect", pc));
+  EXPECT_FALSE(match(".x + rect", pc));       // only the previous element sibling
+  EXPECT_FALSE(match("rect + rect", pa));     // the first child has none
+  EXPECT_TRUE(match(".k > .x + circle", pb));  // the sibling's parent is the ancestor's
+  EXPECT_TRUE(match("svg .x+circle", pb));
+  EXPECT_FALSE(match("circle + .x", pa));
+  EXPECT_TRUE(match("g > rect:first-child + :not(rect)", pb));
+}
+
+TEST(SvgCss, VarSubstitution) {
+  const CustomProperties custom{{"--a", "red"}, {"--b", "var(--a) 2px"}, {"--self", "var(--self)"},
+                                {"--ping", "var(--pong)"}, {"--pong", "var(--ping)"}};
+  std::string out;
+  EXPECT_TRUE(substitute_vars("var(--a)", custom, out));
+  EXPECT_EQ(out, "red");
+  EXPECT_TRUE(substitute_vars("url(#x) VAR( --A )", custom, out));  // names are compared lower-cased
+  EXPECT_EQ(out, "url(#x) red");
+  EXPECT_TRUE(substitute_vars("0 var(--b)", custom, out));
+  EXPECT_EQ(out, "0 red 2px");
+  EXPECT_TRUE(substitute_vars("var(--none, var(--a))", custom, out));  // the fallback, itself a reference
+  EXPECT_EQ(out, "red");
+  EXPECT_TRUE(substitute_vars("var(--none, rgb(1, 2, 3))", custom, out));  // commas inside the fallback
+  EXPECT_EQ(out, "rgb(1, 2, 3)");
+  EXPECT_TRUE(substitute_vars("avar(--a)", custom, out));  // not a var( function
+  EXPECT_EQ(out, "avar(--a)");
+  EXPECT_FALSE(substitute_vars("var(--none)", custom, out));
+  EXPECT_FALSE(substitute_vars("var(a)", custom, out));
+  EXPECT_FALSE(substitute_vars("var(--a", custom, out));
+  EXPECT_FALSE(substitute_vars("var(--self)", custom, out));  // cycles are invalid
+  EXPECT_FALSE(substitute_vars("var(--ping)", custom, out));
+  // References that double at every level: stopped by the size limit, not by memory.
+  CustomProperties doubling{{"--l0", "xxxxxxxxxxxxxxxx"}};
+  for (int i = 1; i <= 16; ++i)
+    doubling["--l" + std::to_string(i)] = "var(--l" + std::to_string(i - 1) + ") var(--l" + std::to_string(i - 1) + ")";
+  EXPECT_FALSE(substitute_vars("var(--l16)", doubling, out));
+  EXPECT_TRUE(substitute_vars("var(--l8)", doubling, out));
+}
+
 TEST(SvgCss, DeepDescendantChainsStayLinear) {
   // 200 nested g elements and a 40-compound descendant selector that fails at the end: a backtracking matcher
   // would take about 200^40 steps.
@@ -141,7 +227,7 @@ TEST(SvgCss, StyleSheetRulesAndAtRules) {
   StyleSheet sheet;
   const auto dropped = sheet.add(
       "<!-- @import url(x.css); @media print { rect { fill: red } } --> rect, .a { fill: green } "
-      "a:hover, b { fill: blue } /* } */ #x { stroke: black; stroke-width: 2 }",
+      "a:nth-child(2), b { fill: blue } /* } */ #x { stroke: black; stroke-width: 2 }",
       10);
   ASSERT_EQ(sheet.rules.size(), 3u);
   EXPECT_EQ(sheet.rules[0].selector.compounds[0].parts[0].name, "rect");
@@ -149,7 +235,7 @@ TEST(SvgCss, StyleSheetRulesAndAtRules) {
   EXPECT_EQ(sheet.rules[1].declarations[0].value, "green");
   EXPECT_EQ(sheet.rules[2].declarations.size(), 2u);
   EXPECT_EQ(sheet.rules[2].order, 2u);
-  ASSERT_EQ(dropped.size(), 1u);  // "a:hover, b": one bad member drops the list
+  ASSERT_EQ(dropped.size(), 1u);  // "a:nth-child(2), b": one unsupported member drops the list
 }
 
 TEST(SvgCss, CascadeOrder) {

@@ -66,6 +66,46 @@ TEST(SvgTree, StyleSheetCascadeAndPrecedence) {
   EXPECT_FALSE(path_at(t.root, 1).stroke);
 }
 
+TEST(SvgTree, SelectorsBeyondLevelTwo) {
+  // :root, :not(), :last-child, the next-sibling combinator, and a user-action pseudo-class that never matches.
+  const Tree t = tree(
+      "<style>:root > g rect { fill: red } rect:not(.a) { stroke: black } g > .a + rect { fill: lime }"
+      " rect:last-child { stroke-width: 4 } rect:hover { fill: blue } g:not(:hover) > .a { fill: yellow }</style>"
+      "<g><rect class='a' width='1' height='1'/><rect width='1' height='1'/><rect width='1' height='1'/></g>");
+  const Group& g = group_at(t.root, 0);
+  ASSERT_EQ(g.children.size(), 3u);
+  expect_rgba(path_at(g, 0).fill->paint.color, 255, 255, 0);  // :not(:hover) beats the type rule (more specific)
+  expect_rgba(path_at(g, 1).fill->paint.color, 0, 255, 0);    // right after .a (and later than the red rule)
+  expect_rgba(path_at(g, 2).fill->paint.color, 255, 0, 0);    // not right after .a, not hovered
+  EXPECT_FALSE(path_at(g, 0).stroke);
+  ASSERT_TRUE(path_at(g, 1).stroke && path_at(g, 2).stroke);
+  EXPECT_EQ(path_at(g, 1).stroke->style.width, 1);
+  EXPECT_EQ(path_at(g, 2).stroke->style.width, 4);  // :last-child
+  EXPECT_TRUE(t.warnings.empty()) << t.warnings.front();
+}
+
+TEST(SvgTree, CustomPropertiesAndVar) {
+  // Declared on :root and overridden on a group, inherited, with fallbacks, references inside custom properties,
+  // and a reference with no value and no fallback: the winning declaration is then `unset`, not the one it beat.
+  const Tree t = tree(
+      "<style>:root { --main: #00ff00; --w: 3 } .b { --main: blue; --dash: var(--w) 1 }"
+      " rect { fill: var(--main); stroke: var(--edge, red); stroke-width: var(--w) }"
+      " .c { fill: VAR( --missing ) } .d { stroke-dasharray: var(--dash) }</style>"
+      "<rect width='1' height='1'/><g class='b'><rect width='1' height='1'/>"
+      "<rect class='c d' width='1' height='1' style='--edge: #000080'/></g>");
+  expect_rgba(path_at(t.root, 0).fill->paint.color, 0, 255, 0);
+  expect_rgba(path_at(t.root, 0).stroke->paint.color, 255, 0, 0);  // the fallback
+  EXPECT_EQ(path_at(t.root, 0).stroke->style.width, 3);
+  const Group& g = group_at(t.root, 1);
+  expect_rgba(path_at(g, 0).fill->paint.color, 0, 0, 255);  // the group's own --main, inherited
+  expect_rgba(path_at(g, 1).fill->paint.color, 0, 0, 0);  // var(--missing), no fallback: unset, the g's black
+  expect_rgba(path_at(g, 1).stroke->paint.color, 0, 0, 128);
+  EXPECT_EQ(path_at(g, 1).stroke->style.dashes, (std::vector<double>{3, 1}));  // a reference inside a reference
+  bool warned = false;
+  for (const std::string& w : t.warnings) warned = warned || w.find("--missing") != std::string::npos;
+  EXPECT_TRUE(warned);
+}
+
 TEST(SvgTree, UnitsResolveToUserUnits) {
   const Tree t = tree("<rect x='1in' y='12pt' width='25.4mm' height='50%' stroke='black' stroke-width='1pc'/>"
                       "<circle r='2em' cx='1cm'/>",

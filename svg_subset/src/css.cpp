@@ -174,61 +174,132 @@ std::vector<Declaration> parse_declarations(std::string_view text, std::size_t b
   return out;
 }
 
+namespace {
+
+/// Specificity counts of one compound: ids, classes (attributes and pseudo-classes too), types.
+struct Counts {
+  std::uint32_t ids = 0, classes = 0, types = 0;
+  Specificity packed() const {
+    return std::min<std::uint32_t>(ids, 255) << 16 | std::min<std::uint32_t>(classes, 255) << 8 |
+           std::min<std::uint32_t>(types, 255);
+  }
+};
+
+bool parse_parts(std::string_view s, std::size_t& i, std::vector<SimpleSelector>& parts, Counts& counts, int depth);
+
+/// The argument of :not( ... ), s[i] just past '(': a comma list of compounds (Selectors 4), up to the matching ')'.
+/// Its specificity is that of its most specific member.
+bool parse_not(std::string_view s, std::size_t& i, SimpleSelector& out, Counts& counts, int depth) {
+  const std::size_t close = scan_to(s, i, ")");
+  if (close >= s.size() || depth > 4) return false;  // unclosed, or :not nested in :not in ... (nobody writes it)
+  const std::string_view list = s.substr(i, close - i);
+  Counts most;
+  std::size_t p = 0;
+  while (p <= list.size()) {
+    const std::size_t comma = scan_to(list, p, ",");
+    const std::string_view item = trim(list.substr(p, comma - p));
+    std::vector<SimpleSelector> parts;
+    Counts item_counts;
+    std::size_t k = 0;
+    if (item.empty() || !parse_parts(item, k, parts, item_counts, depth + 1) || k != item.size()) return false;
+    if (item_counts.packed() > most.packed()) most = item_counts;
+    out.alternatives.push_back(std::move(parts));
+    p = comma + 1;
+  }
+  counts.ids += most.ids;
+  counts.classes += most.classes;
+  counts.types += most.types;
+  out.kind = SimpleSelector::Kind::Not;
+  i = close + 1;
+  return true;
+}
+
+/// One compound from s[i]: an optional type or '*', then any number of #id .class [attr] :pseudo-class. Stops at
+/// whitespace, a combinator or the end; false for anything it does not support.
+bool parse_parts(std::string_view s, std::size_t& i, std::vector<SimpleSelector>& parts, Counts& counts, int depth) {
+  if (i < s.size() && s[i] == '*') {
+    parts.push_back({SimpleSelector::Kind::Universal, {}, {}, {}, {}});
+    ++i;
+  } else if (i < s.size() && is_name_char(s[i])) {
+    parts.push_back({SimpleSelector::Kind::Type, {}, std::string(read_name(s, i)), {}, {}});
+    ++counts.types;
+  }
+  while (i < s.size() && !is_space(s[i]) && s[i] != '>' && s[i] != '+' && s[i] != '~') {
+    SimpleSelector part;
+    const char c = s[i++];
+    if (c == '#' || c == '.') {
+      part.kind = c == '#' ? SimpleSelector::Kind::Id : SimpleSelector::Kind::Class;
+      part.name = std::string(read_name(s, i));
+      if (part.name.empty()) return false;
+      ++(c == '#' ? counts.ids : counts.classes);
+    } else if (c == '[') {
+      if (!parse_attribute_selector(s, i, part)) return false;
+      ++counts.classes;
+    } else if (c == ':') {
+      const std::string name = lower(read_name(s, i));
+      if (name == "not" && i < s.size() && s[i] == '(') {
+        ++i;
+        if (!parse_not(s, i, part, counts, depth)) return false;
+        parts.push_back(std::move(part));
+        continue;
+      }
+      static constexpr std::string_view kNever[] = {"hover", "active", "focus", "focus-within", "focus-visible",
+                                                   "visited", "target"};
+      if (name == "first-child") {
+        part.kind = SimpleSelector::Kind::FirstChild;
+      } else if (name == "last-child") {
+        part.kind = SimpleSelector::Kind::LastChild;
+      } else if (name == "only-child") {
+        part.kind = SimpleSelector::Kind::OnlyChild;
+      } else if (name == "root") {
+        part.kind = SimpleSelector::Kind::Root;
+      } else if (name == "link" || name == "any-link") {
+        part.kind = SimpleSelector::Kind::Link;
+      } else if (std::find(std::begin(kNever), std::end(kNever), name) != std::end(kNever)) {
+        part.kind = SimpleSelector::Kind::Never;
+      } else {
+        return false;  // other pseudo-classes (:nth-child, ...), pseudo-elements ("::" reads an empty name)
+      }
+      if (i < s.size() && s[i] == '(') return false;  // :first-child(...) and the like
+      ++counts.classes;
+    } else {
+      return false;  // ',' (lists are split before), ')' or garbage
+    }
+    parts.push_back(std::move(part));
+  }
+  return !parts.empty();
+}
+
+}  // namespace
+
 bool parse_selector(std::string_view text, Selector& out) {
   out = Selector{};
   const std::string_view s = trim(text);
   if (s.empty()) return false;
-  std::uint32_t ids = 0, classes = 0, types = 0;
+  Counts counts;
   std::size_t i = 0;
   Compound::Combinator pending = Compound::Combinator::None;
   while (i < s.size()) {
     Compound compound;
     compound.combinator = pending;
-    // A compound: an optional type or '*', then any number of #id .class [attr] :first-child.
-    if (s[i] == '*') {
-      compound.parts.push_back({SimpleSelector::Kind::Universal, {}, {}, {}});
-      ++i;
-    } else if (is_name_char(s[i])) {
-      compound.parts.push_back({SimpleSelector::Kind::Type, {}, std::string(read_name(s, i)), {}});
-      ++types;
-    }
-    while (i < s.size() && !is_space(s[i]) && s[i] != '>') {
-      SimpleSelector part;
-      const char c = s[i++];
-      if (c == '#' || c == '.') {
-        part.kind = c == '#' ? SimpleSelector::Kind::Id : SimpleSelector::Kind::Class;
-        part.name = std::string(read_name(s, i));
-        if (part.name.empty()) return false;
-        ++(c == '#' ? ids : classes);
-      } else if (c == '[') {
-        if (!parse_attribute_selector(s, i, part)) return false;
-        ++classes;
-      } else if (c == ':') {
-        if (lower(read_name(s, i)) != "first-child") return false;  // other pseudo-classes and elements
-        part.kind = SimpleSelector::Kind::FirstChild;
-        ++classes;
-      } else {
-        return false;  // '+', '~', ',' (lists are split before) or garbage
-      }
-      compound.parts.push_back(std::move(part));
-    }
-    if (compound.parts.empty()) return false;
+    if (!parse_parts(s, i, compound.parts, counts, 0)) return false;
     out.compounds.push_back(std::move(compound));
-    // A combinator: whitespace (descendant) and/or '>' (child).
+    // A combinator: whitespace (descendant), or '>' (child) / '+' (next sibling) with optional whitespace.
     bool space = false;
     while (i < s.size() && is_space(s[i])) ++i, space = true;
-    if (i < s.size() && s[i] == '>') {
-      pending = Compound::Combinator::Child;
+    if (i < s.size() && (s[i] == '>' || s[i] == '+')) {
+      pending = s[i] == '>' ? Compound::Combinator::Child : Compound::Combinator::NextSibling;
       ++i;
       while (i < s.size() && is_space(s[i])) ++i;
       if (i >= s.size()) return false;
+    } else if (i < s.size() && s[i] == '~') {
+      return false;  // subsequent-sibling combinator: not supported
     } else if (space) {
       pending = Compound::Combinator::Descendant;
     }
   }
   if (out.compounds.empty()) return false;
-  out.specificity = std::min<std::uint32_t>(ids, 255) << 16 | std::min<std::uint32_t>(classes, 255) << 8 |
-                    std::min<std::uint32_t>(types, 255);
+  out.specificity = counts.packed();
   return true;
 }
 
@@ -291,6 +362,53 @@ std::vector<std::size_t> StyleSheet::add(std::string_view text, std::size_t base
     i = close + 1;
   }
   return dropped;
+}
+
+namespace {
+
+constexpr int kMaxVarDepth = 16;
+constexpr std::size_t kMaxVarResult = 64 * 1024;
+
+bool substitute_at(std::string_view v, const CustomProperties& custom, std::string& out, int depth) {
+  if (depth > kMaxVarDepth) return false;
+  std::size_t i = 0;
+  while (i < v.size()) {
+    const std::size_t at = v.find('(', i);
+    // A var( function: "var" (any case) right before the bracket, not the end of a longer name.
+    const bool is_var = at != std::string_view::npos && at >= i + 3 && lower(v.substr(at - 3, 3)) == "var" &&
+                        (at == 3 || !is_name_char(v[at - 4]));
+    if (!is_var) {
+      const std::size_t end = at == std::string_view::npos ? v.size() : at + 1;
+      out.append(v.substr(i, end - i));
+      i = end;
+      continue;
+    }
+    out.append(v.substr(i, at - 3 - i));
+    const std::size_t close = scan_to(v, at + 1, ")");
+    if (close >= v.size()) return false;
+    const std::string_view inside = v.substr(at + 1, close - at - 1);
+    const std::size_t comma = scan_to(inside, 0, ",");
+    const std::string name = lower(trim(inside.substr(0, comma)));
+    if (name.size() < 3 || name[0] != '-' || name[1] != '-') return false;
+    const auto it = custom.find(name);
+    if (it != custom.end()) {
+      if (!substitute_at(it->second, custom, out, depth + 1)) return false;
+    } else if (comma < inside.size()) {
+      if (!substitute_at(trim(inside.substr(comma + 1)), custom, out, depth + 1)) return false;
+    } else {
+      return false;
+    }
+    if (out.size() > kMaxVarResult) return false;
+    i = close + 1;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool substitute_vars(std::string_view value, const CustomProperties& custom, std::string& out) {
+  out.clear();
+  return substitute_at(value, custom, out, 0);
 }
 
 namespace detail {

@@ -1,10 +1,14 @@
 // svg_subset: the CSS that SVG files use: <style> sheets and style attributes, selectors, specificity, cascade.
 //
-// Supported selectors (CSS Selectors Level 3 subset): type, universal `*`, `#id`, `.class`, attribute
-// (`[a]`, `[a=v]`, `[a~=v]`, `[a|=v]`, `[a^=v]`, `[a$=v]`, `[a*=v]`), `:first-child`, and the descendant
-// (whitespace) and child (`>`) combinators, in comma-separated lists. A selector with anything else (other
-// pseudo-classes, pseudo-elements, `+`, `~`) is invalid and its rule is dropped, as browsers do. At-rules
-// (`@media`, `@import`, ...) are skipped whole. Every pass over the text is linear in its length.
+// Supported selectors (CSS Selectors Level 3 and 4 subset): type, universal `*`, `#id`, `.class`, attribute
+// (`[a]`, `[a=v]`, `[a~=v]`, `[a|=v]`, `[a^=v]`, `[a$=v]`, `[a*=v]`), `:first-child`, `:last-child`,
+// `:only-child`, `:root`, `:link` / `:any-link` (an `a` with a link), `:not(list of compounds)`, the user-action
+// pseudo-classes (`:hover`, `:active`, `:focus`, `:focus-within`, `:focus-visible`, `:visited`, `:target`: valid,
+// never matching in a still image), and the descendant (whitespace), child (`>`) and next-sibling (`+`)
+// combinators, in comma-separated lists. A selector with anything else (other pseudo-classes such as
+// `:nth-child`, pseudo-elements, `~`) is unsupported and its rule is dropped, as browsers drop invalid ones.
+// At-rules (`@media`, `@import`, ...) are skipped whole. Every pass over the text is linear in its length, and
+// matching one element looks at its ancestors and their adjacent siblings only.
 #pragma once
 
 #include <cstddef>
@@ -12,6 +16,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace vraster::svg::css {
@@ -31,18 +36,23 @@ std::vector<Declaration> parse_declarations(std::string_view text, std::size_t b
 
 /// One simple selector inside a compound one.
 struct SimpleSelector {
-  enum class Kind : std::uint8_t { Type, Universal, Id, Class, Attribute, FirstChild };
+  enum class Kind : std::uint8_t {
+    Type, Universal, Id, Class, Attribute, FirstChild, LastChild, OnlyChild, Root, Link,
+    Never,  ///< a user-action pseudo-class (:hover, ...): nothing is hovered in a still image
+    Not,    ///< :not(...): matches when none of `alternatives` does
+  };
   /// How an attribute selector compares: [a], [a=v], [a~=v], [a|=v], [a^=v], [a$=v], [a*=v].
   enum class Match : std::uint8_t { Exists, Equals, Includes, DashMatch, Prefix, Suffix, Substring };
   Kind kind = Kind::Universal;
   Match match = Match::Exists;
   std::string name;   ///< element type, id, class or attribute name
   std::string value;  ///< the attribute value compared with
+  std::vector<std::vector<SimpleSelector>> alternatives;  ///< Not: its argument list, one compound each
 };
 
 /// A compound selector and the combinator that joins it to the one before (none for the first).
 struct Compound {
-  enum class Combinator : std::uint8_t { None, Descendant, Child };
+  enum class Combinator : std::uint8_t { None, Descendant, Child, NextSibling };
   Combinator combinator = Combinator::None;
   std::vector<SimpleSelector> parts;
 };
@@ -80,6 +90,8 @@ bool parse_selector(std::string_view text, Selector& out);
 ///   static std::string_view name(Node);           element type (local name)
 ///   static bool attribute(Node, std::string_view name, std::string_view& value);
 ///   static Node previous_element(Node);           the previous element sibling, or null
+///   static Node next_element(Node);               the next element sibling, or null
+///   static bool is_root(Node);                    no parent element (the document's root element)
 ///   static bool is_null(Node);
 
 // ---- implementation of the template ----
@@ -90,8 +102,8 @@ bool attribute_matches(const SimpleSelector& s, std::string_view value);
 bool class_list_contains(std::string_view classes, std::string_view name);
 
 template <class Adapter, class Node>
-bool matches_compound(const Compound& compound, Node node) {
-  for (const SimpleSelector& s : compound.parts) {
+bool matches_parts(const std::vector<SimpleSelector>& parts, Node node) {
+  for (const SimpleSelector& s : parts) {
     std::string_view value;
     switch (s.kind) {
       case SimpleSelector::Kind::Universal:
@@ -111,21 +123,52 @@ bool matches_compound(const Compound& compound, Node node) {
       case SimpleSelector::Kind::FirstChild:
         if (!Adapter::is_null(Adapter::previous_element(node))) return false;
         break;
+      case SimpleSelector::Kind::LastChild:
+        if (!Adapter::is_null(Adapter::next_element(node))) return false;
+        break;
+      case SimpleSelector::Kind::OnlyChild:
+        if (!Adapter::is_null(Adapter::previous_element(node)) || !Adapter::is_null(Adapter::next_element(node)))
+          return false;
+        break;
+      case SimpleSelector::Kind::Root:
+        if (!Adapter::is_root(node)) return false;
+        break;
+      case SimpleSelector::Kind::Link:
+        if (Adapter::name(node) != "a" || !(Adapter::attribute(node, "href", value) ||
+                                            Adapter::attribute(node, "xlink:href", value)))
+          return false;
+        break;
+      case SimpleSelector::Kind::Never:
+        return false;
+      case SimpleSelector::Kind::Not:
+        for (const std::vector<SimpleSelector>& alternative : s.alternatives) {
+          if (matches_parts<Adapter>(alternative, node)) return false;
+        }
+        break;
     }
   }
   return true;
+}
+
+template <class Adapter, class Node>
+bool matches_compound(const Compound& compound, Node node) {
+  return matches_parts<Adapter>(compound.parts, node);
 }
 
 }  // namespace detail
 
 /// Matches a selector against the element path[path.size() - 1] whose ancestors are path[0 .. size - 2] (root
 /// first). Right to left, it keeps the positions where each compound can match with everything to its right
-/// satisfied: a child combinator steps one up, a descendant one allows any ancestor of the deepest position so far.
-/// That is O(compounds x depth), never the exponential backtracking of a naive descendant matcher.
+/// satisfied: a child combinator steps one up, a descendant one allows any ancestor of the deepest position so far,
+/// a next-sibling one stays at the same depth on the previous sibling. Each depth holds one element at a time
+/// (`at`: the ancestor itself, or after n `+` its n-th previous sibling; every position has taken the same number
+/// of `+` steps since the last `>` or descendant step). That is O(compounds x depth), never the exponential
+/// backtracking of a naive descendant matcher.
 template <class Adapter, class Node>
 bool matches_path(const Selector& selector, const std::vector<Node>& path) {
   if (selector.compounds.empty() || path.empty()) return false;
   std::vector<char> ok(path.size(), 0), next(path.size(), 0);
+  std::vector<Node> at(path);
   std::size_t i = selector.compounds.size() - 1;
   if (!detail::matches_compound<Adapter>(selector.compounds[i], path.back())) return false;
   ok.back() = 1;
@@ -134,11 +177,19 @@ bool matches_path(const Selector& selector, const std::vector<Node>& path) {
     const Compound& left = selector.compounds[i - 1];
     std::fill(next.begin(), next.end(), 0);
     bool any = false;
-    if (combinator == Compound::Combinator::Child) {
+    if (combinator == Compound::Combinator::NextSibling) {
+      for (std::size_t j = 0; j < path.size(); ++j) {
+        if (!ok[j]) continue;
+        at[j] = Adapter::previous_element(at[j]);
+        if (!Adapter::is_null(at[j]) && detail::matches_compound<Adapter>(left, at[j])) next[j] = 1, any = true;
+      }
+    } else if (combinator == Compound::Combinator::Child) {
+      std::copy(path.begin(), path.end(), at.begin());  // the parent of a sibling is the parent of the ancestor
       for (std::size_t j = 1; j < path.size(); ++j) {
         if (ok[j] && detail::matches_compound<Adapter>(left, path[j - 1])) next[j - 1] = 1, any = true;
       }
     } else {
+      std::copy(path.begin(), path.end(), at.begin());
       std::size_t top = 0;  // the deepest position that matched: any ancestor of it will do
       for (std::size_t j = 0; j < path.size(); ++j) {
         if (ok[j]) top = j;
@@ -155,6 +206,15 @@ bool matches_path(const Selector& selector, const std::vector<Node>& path) {
 }
 
 
+
+/// Custom properties in force on an element (`--name: value`, names lower-cased like every property name here).
+using CustomProperties = std::unordered_map<std::string, std::string>;
+
+/// Replaces every `var(--name)` and `var(--name, fallback)` in `value` (CSS Custom Properties 1, section 3) with
+/// the custom property's value, else the fallback, else returns false: the declaration is then invalid at
+/// computed-value time. References inside what is substituted are replaced too; a cycle, nesting deeper than 16 or
+/// a result over 64 KiB (references that double at each level) is invalid as well.
+bool substitute_vars(std::string_view value, const CustomProperties& custom, std::string& out);
 
 /// Where a declaration in the cascade came from, lowest precedence first.
 enum class Origin : std::uint8_t { PresentationAttribute, Sheet, StyleAttribute, SheetImportant, StyleImportant };

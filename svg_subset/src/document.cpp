@@ -113,6 +113,8 @@ struct Style {
   std::optional<Affine> css_transform;  // `transform` from CSS (style sheets, style attribute): beats the attribute
   std::optional<Color> background;       // background-color (CSS only; drawn for the root element)
   detail::TextProperties text;  // font, spacing, anchor, baselines, decorations (text.hpp)
+  // Custom properties (--name), inherited: shared with the parent until an element declares its own.
+  std::shared_ptr<const css::CustomProperties> custom;
 
   /// The style a child starts from: inherited properties kept, the others at their initial values.
   Style inherited() const {
@@ -156,6 +158,16 @@ struct ViewBox {
   double x, y, width, height;
 };
 
+/// Whether a value holds "var(" in any letter case (a custom property reference to substitute).
+bool has_var_reference(std::string_view v) {
+  for (std::size_t at = v.find('('); at != std::string_view::npos; at = v.find('(', at + 1)) {
+    if (at >= 3 && detail::to_lower(v[at - 3]) == 'v' && detail::to_lower(v[at - 2]) == 'a' &&
+        detail::to_lower(v[at - 1]) == 'r')
+      return true;
+  }
+  return false;
+}
+
 /// Adapter for css::matches_path on pugixml nodes.
 struct XmlAdapter {
   static std::string_view name(pugi::xml_node n) {
@@ -178,6 +190,13 @@ struct XmlAdapter {
     }
     return {};
   }
+  static pugi::xml_node next_element(pugi::xml_node n) {
+    for (pugi::xml_node p = n.next_sibling(); p; p = p.next_sibling()) {
+      if (p.type() == pugi::node_element) return p;
+    }
+    return {};
+  }
+  static bool is_root(pugi::xml_node n) { return n.parent().type() != pugi::node_element; }
   static bool is_null(pugi::xml_node n) { return !n; }
 };
 
@@ -674,11 +693,40 @@ class Builder {
       return c.declaration->name == "font-size" || c.declaration->name == "font";
     };
     std::stable_partition(cascade.begin(), cascade.end(), is_font_size);
+    // Custom properties first, in cascade order (the last one wins): var() in the others refers to them.
+    const auto is_custom = [](const std::string& name) { return name.size() > 2 && name.compare(0, 2, "--") == 0; };
+    std::shared_ptr<css::CustomProperties> own_custom;
+    for (const css::Cascaded& c : cascade) {
+      const css::Declaration& d = *c.declaration;
+      if (!is_custom(d.name)) continue;
+      if (!own_custom) own_custom = std::make_shared<css::CustomProperties>(style.custom ? *style.custom : css::CustomProperties{});
+      if (d.value == "initial" || d.value.empty())
+        own_custom->erase(d.name);
+      else if (d.value != "inherit")
+        (*own_custom)[d.name] = d.value;
+    }
+    if (own_custom) style.custom = std::move(own_custom);
+    static const css::CustomProperties kNoCustom;
+    std::string substituted;
     const double saved_font_size = font_size_;
     font_size_ = parent.text.font_size;  // em in font-size itself is the parent's (text_properties.cpp)
     for (const css::Cascaded& c : cascade) {
+      const css::Declaration& d = *c.declaration;
+      if (is_custom(d.name)) continue;
       if (!is_font_size(c) && font_size_ != style.text.font_size) font_size_ = style.text.font_size;
-      apply(c.declaration->name, c.declaration->value, c.declaration->offset, style, parent);
+      std::string_view value = d.value;
+      if (has_var_reference(value)) {
+        // A reference with no value makes the declaration invalid at computed-value time: the property is then
+        // `unset` (CSS Custom Properties 1, 3.1), not the value of a declaration it won over.
+        if (!css::substitute_vars(value, style.custom ? *style.custom : kNoCustom, substituted)) {
+          warn("invalid values", d.offset, "var() in " + printable(d.name) + " " + quoted(value) +
+                                               " refers to no custom property and has no fallback: unset");
+          value = "unset";
+        } else {
+          value = trim(substituted);
+        }
+      }
+      apply(d.name, value, d.offset, style, parent);
     }
     font_size_ = saved_font_size;
     return style;
@@ -694,7 +742,11 @@ class Builder {
       inherit(name, s, parent);
       return;
     }
-    if (v == "initial" || v == "unset") return;  // close enough: most SVG properties start at their initial values
+    if (v == "unset") {  // inherited properties take the parent's value, the others their initial one
+      inherit(name, s, parent.inherited());
+      return;
+    }
+    if (v == "initial") return;  // close enough: most SVG properties start at their initial values
     auto bad = [&] { invalid(name, v, offset); };
     if (name == "fill" || name == "stroke") {
       const std::optional<DeclaredPaint> paint = parse_paint(v, offset);
