@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -200,7 +201,12 @@ TEST(Path, ArcOrEllipseWithHugeRadiiIsFiniteOrThrowsAndLeavesThePathUnchanged) {
   } catch (const vraster::Error&) {
     EXPECT_EQ(arc.points().size(), 1u);
   }
-  EXPECT_TRUE(throws_and_keeps_path([](Path& p) { p.add_ellipse({0, 0}, 1.75e308, 1); }));
+  // An ellipse whose points are representable may succeed (all finite); one reaching past the largest double throws
+  // and leaves the path as it was.
+  Path ellipse;
+  ellipse.add_ellipse({0, 0}, 1.75e308, 1);
+  for (const Point& q : ellipse.points()) EXPECT_TRUE(is_finite(q));
+  EXPECT_TRUE(throws_and_keeps_path([](Path& p) { p.add_ellipse({1e308, 0}, 1e308, 1); }));
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -534,4 +540,48 @@ TEST(PathBounds, EmptyPathHasZeroBounds) {
 }
 
 }  // namespace
+TEST(PathBounds, RandomCurvesAreBoundedTightly) {
+  // The exact bounds of random quads and cubics (control points often far outside the end points, so the extrema
+  // count): every sampled curve point lies inside, and each side is reached by some sample (within what 4096
+  // samples per curve resolve).
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<double> coord(-100, 100);
+  for (int round = 0; round < 200; ++round) {
+    Path p;
+    p.move_to(coord(rng), coord(rng));
+    for (int k = 0; k < 3; ++k) {
+      if (rng() % 2) {
+        p.quad_to({coord(rng), coord(rng)}, {coord(rng), coord(rng)});
+      } else {
+        p.cubic_to({coord(rng), coord(rng)}, {coord(rng), coord(rng)}, {coord(rng), coord(rng)});
+      }
+    }
+    const Rect b = p.bounds();
+    Rect sampled = Rect::from_point(p.points()[0]);
+    Point last = p.points()[0];
+    std::size_t i = 1;
+    for (const Verb v : p.verbs()) {
+      if (v == Verb::Move) continue;
+      const int n = v == Verb::Quad ? 2 : 3;
+      for (int s = 0; s <= 4096; ++s) {
+        const double t = s / 4096.0, u = 1 - t;
+        const Point q = n == 2 ? last * (u * u) + p.points()[i] * (2 * u * t) + p.points()[i + 1] * (t * t)
+                               : last * (u * u * u) + p.points()[i] * (3 * u * u * t) +
+                                     p.points()[i + 1] * (3 * u * t * t) + p.points()[i + 2] * (t * t * t);
+        sampled.include(q);
+      }
+      last = p.points()[i + n - 1];
+      i += n;
+    }
+    ASSERT_LE(b.x0, sampled.x0 + 1e-9);
+    ASSERT_LE(b.y0, sampled.y0 + 1e-9);
+    ASSERT_GE(b.x1, sampled.x1 - 1e-9);
+    ASSERT_GE(b.y1, sampled.y1 - 1e-9);
+    ASSERT_NEAR(b.x0, sampled.x0, 1e-3);
+    ASSERT_NEAR(b.y0, sampled.y0, 1e-3);
+    ASSERT_NEAR(b.x1, sampled.x1, 1e-3);
+    ASSERT_NEAR(b.y1, sampled.y1, 1e-3);
+  }
+}
+
 }  // namespace vraster::test

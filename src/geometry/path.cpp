@@ -292,19 +292,42 @@ Path& Path::add_round_rect(const Rect& r, double rx, double ry) {
   });
 }
 
+namespace {
+
+// The full ellipse's cubics: arc_segments' construction (steps of kMaxArcStep from angle 0, handles k = 4/3
+// tan(step / 4)) on the unit circle, computed once: a circle is among the commonest shapes, and its path took some
+// eighty sine and cosine calls.
+struct UnitCircle {
+  static constexpr int kSteps = 12;
+  static_assert(kSteps * kMaxArcStep > 2 * kPi - 1e-9 && (kSteps - 1) * kMaxArcStep < 2 * kPi);
+  double cos_t[kSteps + 1], sin_t[kSteps + 1], k;
+  UnitCircle() : k(4.0 / 3.0 * std::tan(2 * kPi / kSteps / 4)) {
+    for (int i = 0; i <= kSteps; ++i) {
+      cos_t[i] = std::cos(2 * kPi * i / kSteps);
+      sin_t[i] = std::sin(2 * kPi * i / kSteps);
+    }
+  }
+};
+
+}  // namespace
+
 Path& Path::add_ellipse(Point c, double rx, double ry) {
   check_finite(c, "add_ellipse");
   check_finite(rx, "add_ellipse");
   check_finite(ry, "add_ellipse");
   rx = std::abs(rx);
   ry = std::abs(ry);
-  // A move, the arc's cubics (kMaxArcStep each), a close.
-  const auto cubics = static_cast<std::size_t>(std::ceil(2 * kPi / kMaxArcStep - 1e-9));
-  reserve_more(cubics + 2, 3 * cubics + 1);
+  static const UnitCircle unit;
+  constexpr int n = UnitCircle::kSteps;
+  reserve_more(n + 2, 3 * n + 1);  // a move, the cubics, a close
   return atomically([&] {
     move_to({c.x + rx, c.y});
-    arc_segments(rx, ry, 0, 0, 2 * kPi);
-    points_.back() = Point{c.x + rx, c.y};
+    auto point = [&](int i) { return i == n ? Point{c.x + rx, c.y} : Point{c.x + rx * unit.cos_t[i], c.y + ry * unit.sin_t[i]}; };
+    auto tangent = [&](int i) { return Point{-rx * unit.sin_t[i], ry * unit.cos_t[i]}; };
+    for (int i = 0; i < n; ++i) {
+      const Point from = point(i), to = point(i + 1);
+      cubic_to(from + tangent(i) * unit.k, to - tangent(i + 1) * unit.k, to);
+    }
     close();
   });
 }
@@ -369,34 +392,45 @@ Rect Path::control_bounds() const {
 
 Rect Path::bounds() const {
   if (points_.empty()) return {};
+  // The on-curve points first; a curve reaches beyond them only where a control point lies outside (a curve stays in
+  // the hull of its control points), so only those curves need their extrema (most curves of most paths do not).
   Rect r = Rect::from_point(points_[0]);
   std::size_t i = 0;
+  for (Verb v : verbs_) {
+    const std::size_t n = v == Verb::Quad ? 2 : v == Verb::Cubic ? 3 : v == Verb::Close ? 0 : 1;
+    if (n > 0) r.include(points_[i + n - 1]);
+    i += n;
+  }
+  const auto inside = [&r](Point c) { return c.x >= r.x0 && c.x <= r.x1 && c.y >= r.y0 && c.y <= r.y1; };
+  i = 0;
   Point last{};
+  Rect out = r;
   for (Verb v : verbs_) {
     switch (v) {
       case Verb::Move:
       case Verb::Line:
         last = points_[i++];
-        r.include(last);
         break;
       case Verb::Quad: {
         const Point c = points_[i], p = points_[i + 1];
-        double t[2];
-        int n = quad_extrema(last.x, c.x, p.x, t);
-        n += quad_extrema(last.y, c.y, p.y, t + n);
-        for (int k = 0; k < n; ++k) r.include(eval_quad(last, c, p, t[k]));
-        r.include(p);
+        if (!inside(c)) {
+          double t[2];
+          int n = quad_extrema(last.x, c.x, p.x, t);
+          n += quad_extrema(last.y, c.y, p.y, t + n);
+          for (int k = 0; k < n; ++k) out.include(eval_quad(last, c, p, t[k]));
+        }
         last = p;
         i += 2;
         break;
       }
       case Verb::Cubic: {
         const Point c1 = points_[i], c2 = points_[i + 1], p = points_[i + 2];
-        double t[4];
-        int n = cubic_extrema(last.x, c1.x, c2.x, p.x, t);
-        n += cubic_extrema(last.y, c1.y, c2.y, p.y, t + n);
-        for (int k = 0; k < n; ++k) r.include(eval_cubic(last, c1, c2, p, t[k]));
-        r.include(p);
+        if (!inside(c1) || !inside(c2)) {
+          double t[4];
+          int n = cubic_extrema(last.x, c1.x, c2.x, p.x, t);
+          n += cubic_extrema(last.y, c1.y, c2.y, p.y, t + n);
+          for (int k = 0; k < n; ++k) out.include(eval_cubic(last, c1, c2, p, t[k]));
+        }
         last = p;
         i += 3;
         break;
@@ -404,7 +438,7 @@ Rect Path::bounds() const {
       case Verb::Close: break;
     }
   }
-  return r;
+  return out;
 }
 
 }  // namespace vraster

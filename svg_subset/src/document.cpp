@@ -1375,10 +1375,13 @@ class Builder {
       image_element(node, style, group, at);
     } else {
       Path geometry = shape_path(node, name);
-      std::optional<Group> markers =
-          (name == "circle" || name == "ellipse") && !geometry.empty()
-              ? markers_of(detail::ellipse_marker_path(geometry.bounds()), style, at)
-              : markers_of(geometry, style, at);
+      const bool marked = !style.marker_start.empty() || !style.marker_mid.empty() || !style.marker_end.empty();
+      std::optional<Group> markers;
+      if (marked) {  // the ellipse's marker path (and its exact bounds) only where markers may be drawn
+        markers = (name == "circle" || name == "ellipse") && !geometry.empty()
+                      ? markers_of(detail::ellipse_marker_path(geometry.bounds()), style, at)
+                      : markers_of(geometry, style, at);
+      }
       std::optional<PathNode> path = path_node(node, std::move(geometry), name, style, at);
       if (markers) {
         add_with_markers(std::move(path), std::move(*markers), style.markers_position, group.children);
