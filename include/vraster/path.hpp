@@ -57,6 +57,8 @@ class Path {
 
   bool empty() const { return verbs_.empty(); }
   void clear();
+  /// Room for this many more verbs and points (growing geometrically): for code that knows how much it will add.
+  void reserve_more(std::size_t verbs, std::size_t points);
   std::span<const Verb> verbs() const { return verbs_; }
   std::span<const Point> points() const { return points_; }
   /// The current point (where the next segment starts).
@@ -75,7 +77,6 @@ class Path {
   Path& atomically(F&& build);
   void ensure_contour();
   void arc_segments(double rx, double ry, double phi, double theta1, double dtheta);
-  void reserve_more(std::size_t verbs, std::size_t points);
 
   std::vector<Verb> verbs_;
   std::vector<Point> points_;

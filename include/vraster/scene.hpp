@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -82,7 +83,9 @@ struct SceneCommand {
 /// A list of draw calls on a canvas of a given size, replayable onto any canvas (Canvas::draw_scene).
 struct Scene {
   int width = 0, height = 0;
-  std::vector<SceneCommand> commands;
+  /// A deque: a recording grows in blocks, never copying (or holding twice) what it has so far, which for a
+  /// document of a million elements was most of the time spent recording it.
+  std::deque<SceneCommand> commands;
 };
 
 /// A device rectangle of whole pixels [x0, x1) x [y0, y1).

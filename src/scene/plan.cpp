@@ -819,7 +819,7 @@ namespace {
 
 /// Appends the commands [first, last) to `out` in depth order: each block (a call, or a layer from its
 /// BeginLayer to its EndLayer) keeps its inside together and is placed by its first command's z.
-void append_by_depth(const Scene& scene, std::size_t first, std::size_t last, std::vector<SceneCommand>& out) {
+void append_by_depth(const Scene& scene, std::size_t first, std::size_t last, std::deque<SceneCommand>& out) {
   struct Block {
     std::size_t begin, end;  // [begin, end)
     double z;
@@ -858,7 +858,6 @@ Scene order_by_depth(const Scene& scene) {
   Scene out;
   out.width = scene.width;
   out.height = scene.height;
-  out.commands.reserve(scene.commands.size());
   append_by_depth(scene, 0, scene.commands.size(), out.commands);
   return out;
 }

@@ -289,24 +289,30 @@ class Outliner {
   void join(Point p, std::size_t a, std::size_t b, bool corner) {
     const Point d0 = dirs_[a], d1 = dirs_[b];
     const Point n0 = normal_of(d0), n1 = normal_of(d1);
-    const double theta = std::atan2(cross(d0, d1), dot(d0, d1));  // turn angle in [-pi, pi]
+    // The turn from d0 to d1 by its cosine and sine (unit directions): the half-angle functions below come from
+    // them by identities; the angle itself only for round joins (no atan2, tan, cos per join).
+    const double turn_cos = dot(d0, d1), turn_sin = cross(d0, d1);
     // Turning towards +n puts the inner corner on the left side; the outer one on the right.
-    const double s = theta >= 0 ? -1.0 : 1.0;  // sign of the outer side's normals
-    std::vector<Point>& outer = theta >= 0 ? right_ : left_;
-    std::vector<Point>& inner = theta >= 0 ? left_ : right_;
+    // atan2(turn_sin, turn_cos) >= 0: a positive sine, or a zero one going straight on or (+0) turning back.
+    const bool left_turn = turn_sin > 0 || (turn_sin == 0 && (turn_cos > 0 || !std::signbit(turn_sin)));
+    const double s = left_turn ? -1.0 : 1.0;  // sign of the outer side's normals
+    std::vector<Point>& outer = left_turn ? right_ : left_;
+    std::vector<Point>& inner = left_turn ? left_ : right_;
     const Point oa = p + n0 * (s * hw_), ob = p + n1 * (s * hw_);
-    const double half = std::fabs(theta) / 2;
+    const double one_plus_cos = std::max(0.0, 1 + turn_cos);
+    const double cos_half = std::sqrt(0.5 * one_plus_cos);  // cos(|theta| / 2), theta in [-pi, pi]
     // Outer side.
     const LineJoin style = corner ? style_.join : LineJoin::Round;
     outer.push_back(oa);
     if (style == LineJoin::Round) {
+      const double theta = std::atan2(turn_sin, turn_cos);  // turn angle in [-pi, pi]
       if (arc_segments(hw_, theta, tol_) == 1) {
         outer.push_back(ob);  // a turn so small that one chord is within tolerance
       } else {
         append_arc(outer, p, hw_, n0 * s, theta, tol_);
       }
     } else {
-      const double c = std::cos(half);
+      const double c = cos_half;
       const bool miter = style == LineJoin::Miter || style == LineJoin::MiterClip;
       if (miter && c * miter_limit_ >= 1 && c > 0) {
         Point bis = (n0 + n1) * s;
@@ -316,7 +322,7 @@ class Outliner {
         // The miter cut by the line square to the bisector at miter_limit * hw from p: each outer edge runs on
         // past its end (oa along d0, ob back along d1) until it meets that line. oa and ob lie hw * cos(half)
         // from p along the bisector; the edges approach the line at sin(half) per unit length.
-        const double sn = std::sin(half);
+        const double sn = std::sqrt(std::max(0.0, 0.5 * (1 - turn_cos)));  // sin(|theta| / 2)
         if (sn > 0) {
           const double t = hw_ * (miter_limit_ - c) / sn;
           outer.push_back(oa + d0 * t);
@@ -327,8 +333,11 @@ class Outliner {
     }
     // Inner side.
     const Point ia = p - n0 * (s * hw_), ib = p - n1 * (s * hw_);
-    const double back = hw_ * std::tan(half);  // distance from p to the offset lines' intersection, along each
-    if (half < kPi / 2 - 1e-9 && back <= 0.5 * std::min(lens_[a], lens_[b])) {
+    // Distance from p to the offset lines' intersection along each: hw tan(|theta| / 2) = hw |sin| / (1 + cos).
+    // Turns of almost 180 degrees (|theta| / 2 within 1e-9 of 90 degrees) have none.
+    const bool meets = one_plus_cos > 2e-18;
+    const double back = meets ? hw_ * std::fabs(turn_sin) / one_plus_cos : 0;
+    if (meets && back <= 0.5 * std::min(lens_[a], lens_[b])) {
       inner.push_back(ia - d0 * back);
     } else {
       inner.push_back(ia);
@@ -346,6 +355,7 @@ class Outliner {
     }
     emitted_ += pts.size();
     if (emitted_ > kMaxStrokeOutlinePoints) throw_outline_too_big();
+    out_.reserve_more(pts.size() + 1, pts.size());
     out_.move_to(pts[0]);
     for (std::size_t i = 1; i < pts.size(); ++i) {
       if (!(pts[i] == pts[i - 1])) out_.line_to(pts[i]);
