@@ -388,11 +388,46 @@ svg::DrawSettings draw_settings(const RenderArgs& a) {
   return settings;
 }
 
+/// Nodes of a tree's groups (not counting clip, mask and pattern content), counted up to `limit`.
+std::size_t count_nodes(const svg::Group& g, std::size_t limit) {
+  std::size_t n = g.children.size();
+  for (const svg::Node& child : g.children) {
+    if (n >= limit) break;
+    if (const auto* sub = std::get_if<svg::Group>(&child.value)) n += count_nodes(*sub, limit - n);
+  }
+  return n;
+}
+
+/// Above this many nodes a single frame is drawn straight onto the image instead of recorded, planned and
+/// replayed: a recording holds a copy of every draw call's state (about 1 KB each), which for a document of a
+/// million shapes was gigabytes on top of the tree, and the plan's savings (culled calls, folded layers) are
+/// small next to that. Same pixels (SvgPlan.PlannedNaiveAndDirectRendersAgree).
+constexpr std::size_t kMaxRecordedNodes = 50'000;
+
+void warn_about_offscreen_budget(bool over_budget, std::ostream& log) {
+  if (!over_budget) return;
+  log << "vraster: warning: some groups, clip paths, masks or patterns were left out: their offscreen images "
+         "would have needed more than 2^26 pixels at once (nested effects on a large image)\n";
+}
+
 /// Everything else: the resolved tree drawn on a canvas (paint servers, clips, masks, layers, blend modes),
 /// recorded once as a scene, analysed once (the plan) and replayed for each frame.
 template <class T>
 void render_tree(const svg::Tree& tree, const RenderArgs& a, const std::string& output, std::ostream& log) {
   const auto [w, h] = svg::tree_output_size(tree, a.width, a.height, a.zoom);
+  if (a.bench_frames == 0 && count_nodes(tree.root, kMaxRecordedNodes + 1) > kMaxRecordedNodes) {
+    svg::DrawStats stats;
+    render_frames<T>(w, h, a, output, [&](BasicImage<T>& image, bool) {
+      image.clear(a.background);
+      Canvas canvas(image);
+      canvas.set_threads(a.threads);
+      stats = svg::draw_tree(tree, canvas, draw_settings(a));
+    });
+    if (a.quiet) return;
+    warn_about_exact_fallbacks(stats.exact_fallbacks, log);
+    warn_about_offscreen_budget(stats.over_budget, log);
+    return;
+  }
   svg::DrawStats recorded;
   const Scene scene = svg::record_tree(tree, w, h, draw_settings(a), &recorded);
   std::uint64_t fallbacks = recorded.exact_fallbacks;
@@ -413,10 +448,7 @@ void render_tree(const svg::Tree& tree, const RenderArgs& a, const std::string& 
   });
   if (a.quiet) return;
   warn_about_exact_fallbacks(fallbacks, log);
-  if (recorded.over_budget) {
-    log << "vraster: warning: some groups, clip paths, masks or patterns were left out: their offscreen images "
-           "would have needed more than 2^26 pixels at once (nested effects on a large image)\n";
-  }
+  warn_about_offscreen_budget(recorded.over_budget, log);
 }
 
 /// Renders one input to `output`; its warnings go to `log`. Throws what goes wrong.

@@ -56,8 +56,10 @@ struct Rgba {
 };
 
 inline std::string describe(const std::uint8_t* p) {
-  return "(" + std::to_string(p[0]) + "," + std::to_string(p[1]) + "," + std::to_string(p[2]) + "," +
-         std::to_string(p[3]) + ")";
+  // Appended piece by piece: "(" + std::to_string(...) trips GCC 12's false -Wrestrict warning.
+  std::string s = "(";
+  for (int c = 0; c < 4; ++c) s.append(std::to_string(p[c])).append(c < 3 ? "," : ")");
+  return s;
 }
 
 /// Every pixel of `image` equals the colour its letter in `map` stands for (one string per row).
