@@ -161,16 +161,15 @@ TEST(SvgMarker, ContextServersArePlacedInTheUsesSpaceAndBox) {
   EXPECT_FALSE(fill.from_context);
   // The use's user space (its transform, before translate(x, y)) into the rect's: translate(1 2) translate(5 0)
   // scale(2), inverted.
-  ASSERT_TRUE(fill.context_space);
-  expect_affine(*fill.context_space, Affine{0.5, 0, 0, 0.5, -3, -1});
-  ASSERT_TRUE(fill.context_box);
-  EXPECT_NEAR(fill.context_box->x0, 26, 1e-9);
-  EXPECT_NEAR(fill.context_box->y0, 42, 1e-9);
-  EXPECT_NEAR(fill.context_box->x1, 86, 1e-9);
-  EXPECT_NEAR(fill.context_box->y1, 122, 1e-9);
+  ASSERT_TRUE(fill.context);
+  expect_affine(fill.context->space, Affine{0.5, 0, 0, 0.5, -3, -1});
+  EXPECT_NEAR(fill.context->box.x0, 26, 1e-9);
+  EXPECT_NEAR(fill.context->box.y0, 42, 1e-9);
+  EXPECT_NEAR(fill.context->box.x1, 86, 1e-9);
+  EXPECT_NEAR(fill.context->box.y1, 122, 1e-9);
   // A colour needs no space.
   EXPECT_EQ(rect->stroke->paint.kind, Paint::Kind::Color);
-  EXPECT_FALSE(rect->stroke->paint.context_space);
+  EXPECT_FALSE(rect->stroke->paint.context);
 }
 
 TEST(SvgMarker, ContextServersArePlacedInTheMarkedShapesSpaceAndBox) {
@@ -182,12 +181,12 @@ TEST(SvgMarker, ContextServersArePlacedInTheMarkedShapesSpaceAndBox) {
   ASSERT_TRUE(rect && rect->fill);
   const Paint& fill = rect->fill->paint;
   ASSERT_EQ(fill.kind, Paint::Kind::Gradient);
-  ASSERT_TRUE(fill.context_space && fill.context_box);
-  expect_affine(*fill.context_space, Affine::translate(-49, -79));  // the instance sits at translate(49 79)
-  EXPECT_EQ(fill.context_box->x0, 10);
-  EXPECT_EQ(fill.context_box->y0, 20);
-  EXPECT_EQ(fill.context_box->x1, 50);
-  EXPECT_EQ(fill.context_box->y1, 80);
+  ASSERT_TRUE(fill.context);
+  expect_affine(fill.context->space, Affine::translate(-49, -79));  // the instance sits at translate(49 79)
+  EXPECT_EQ(fill.context->box.x0, 10);
+  EXPECT_EQ(fill.context->box.y0, 20);
+  EXPECT_EQ(fill.context->box.x1, 50);
+  EXPECT_EQ(fill.context->box.y1, 80);
 }
 
 TEST(SvgMarker, AMarkerIsLeftOutInsideItsOwnContent) {

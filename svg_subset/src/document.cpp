@@ -1295,6 +1295,12 @@ class Builder {
 
   /// Appends the nodes of the children of `node` (computed style `style`).
   void children(pugi::xml_node node, const Style& style, std::vector<Node>& out, int depth) {
+    // Room for every element child at once (most become one node): a group of a million shapes would otherwise
+    // grow by doubling, copying its nodes and holding two copies at each step.
+    std::size_t elements = 0;
+    for (const pugi::xml_node child : node.children()) elements += child.type() == pugi::node_element;
+    if (elements > 1 && out.capacity() < out.size() + elements)
+      out.reserve(std::max(out.size() + elements, 2 * out.capacity()));  // geometric: calls may share `out`
     for (const pugi::xml_node child : node.children()) {
       if (child.type() == pugi::node_element) element(child, style, out, depth + 1);
     }
@@ -1512,8 +1518,7 @@ class Builder {
         paint.kind = Paint::Kind::None;
         return;
       }
-      paint.context_space = m.inverse();
-      paint.context_box = box;
+      paint.context = std::make_shared<const ContextPlacement>(ContextPlacement{m.inverse(), box});
     };
     for (Node& child : g.children) {
       if (Group* sub = std::get_if<Group>(&child.value)) {
@@ -2045,7 +2050,7 @@ class Builder {
         paint = context;
         paint.opacity = opacity;  // the shape's own fill- or stroke-opacity
         // A server is placed in the context element's space once that element is built (place_context_paints).
-        paint.from_context = !context.context_space &&
+        paint.from_context = !context.context &&
                              (context.kind == Paint::Kind::Gradient || context.kind == Paint::Kind::Pattern);
       } else {
         paint.kind = Paint::Kind::None;  // none, and context paints outside markers

@@ -411,9 +411,9 @@ class Drawer {
   std::optional<vraster::Paint> paint(const svg::Paint& p, const PathNode& shape) {
     // A context paint (SVG 2) refers to the context element's user space and box, not the shape's.
     auto bbox = [&] {
-      return p.context_box ? *p.context_box : shape.paint_box ? *shape.paint_box : shape.path.bounds();
+      return p.context ? p.context->box : shape.paint_box ? *shape.paint_box : shape.path.bounds();
     };
-    const Affine space = p.context_space.value_or(Affine{});
+    const Affine space = p.context ? p.context->space : Affine{};
     // A server in objectBoundingBox units cannot apply to a box without area (a horizontal or vertical line):
     // the fallback colour paints instead when there is one (SVG 2, 13.2), else nothing.
     const bool box_units =

@@ -64,6 +64,13 @@ struct Pattern {
   std::shared_ptr<const Group> content;            ///< the tile's children
 };
 
+/// Where a context paint's server lives: `space` maps the context element's user space into the shape's,
+/// `box` is the context element's object bounding box in it.
+struct ContextPlacement {
+  Affine space;
+  Rect box;
+};
+
 /// A paint, resolved: none, a colour, or a paint server record. `opacity` is fill-opacity / stroke-opacity.
 struct Paint {
   enum class Kind : std::uint8_t { None, Color, Gradient, Pattern };
@@ -77,11 +84,9 @@ struct Paint {
   /// no fallback was given, and such a shape paints nothing.
   std::optional<Color> fallback;
   /// `context-fill` / `context-stroke` that took a gradient or pattern: SVG 2 places the server in the context
-  /// element's user space and bounding box (the `use` element's, or the marked shape's), not the shape's.
-  /// `context_space` maps that space into the shape's user space; `context_box` is the context element's
-  /// object bounding box in it. Unset: the shape's own space and box.
-  std::optional<Affine> context_space;
-  std::optional<Rect> context_box;
+  /// element's user space and bounding box (the `use` element's, or the marked shape's), not the shape's. Null:
+  /// the shape's own space and box. (Behind a pointer: most paints have none, and every shape holds two paints.)
+  std::shared_ptr<const ContextPlacement> context;
   bool from_context = false;  ///< while the tree is built: a context paint its context element has not placed yet
 };
 
