@@ -86,6 +86,18 @@ std::vector<Case> cases() {
     for (int i = 0; i < 300000; ++i) body += "<foo/>";
     out.push_back({"300000 ignored elements", {"render", "IN", "-o", "OUT"}, svg(s10, body)});
   }
+  {
+    // Just under the element limit, each shape filled and stroked (two draw calls): a recording of every call
+    // ran out of the address space below; drawn straight onto the image it fits in about a third of it.
+    std::string body = "<style>rect { fill: red; stroke: blue }</style>";
+    body.reserve(44'000'000);
+    for (int i = 0; i < 999000; ++i) {
+      body += "<rect x=\"" + std::to_string(i % 997) + "\" y=\"" + std::to_string(i % 991) +
+              "\" width=\"3\" height=\"3\"/>";
+    }
+    out.push_back({"999000 filled and stroked rects", {"render", "IN", "-o", "OUT"},
+                   svg("width=\"1000\" height=\"1000\"", body)});
+  }
   out.push_back({"largest image (8192 x 8192) 8 bits", {"render", "IN", "-o", "OUT"},
                  svg("width=\"8192\" height=\"8192\"", "<rect width=\"100\" height=\"100\"/>")});
   out.push_back({"largest image (8192 x 8192) 16 bits", {"render", "IN", "-o", "OUT", "--depth", "16"},
