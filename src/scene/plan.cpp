@@ -716,7 +716,8 @@ std::string json_string(const std::string& s) {
 std::string describe_decision(const Scene& scene, const ScenePlan& plan, std::size_t i) {
   const SceneCommand& c = scene.commands.at(i);
   const PlanDecision& d = plan.decisions.at(i);
-  const std::string ref = "#" + std::to_string(d.ref);
+  std::string ref = "#";  // appended, not "#" + ...: GCC 12 warns falsely (-Wrestrict) on that form here
+  ref += std::to_string(d.ref);
   const std::string op = std::string(to_string(c.kind == Kind::BeginLayer ? c.layer.op : c.state.op));
   switch (d.reason) {
     case Reason::Drawn: return drawn_sentence(c, d);
