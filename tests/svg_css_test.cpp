@@ -1,6 +1,7 @@
 // svg_subset's CSS: declarations, selectors, specificity, matching and cascade order, on a hand-made tree.
 #include <gtest/gtest.h>
 
+#include <initializer_list>
 #include <map>
 #include <string>
 #include <vector>
@@ -32,6 +33,16 @@ struct FakeAdapter {
   static bool is_root(const Fake* n) { return n->root; }
   static bool is_null(const Fake* n) { return n == nullptr; }
 };
+
+/// Makes `siblings` one run of element siblings, in order (previous / next links).
+void link_siblings(std::initializer_list<Fake*> siblings) {
+  Fake* before = nullptr;
+  for (Fake* f : siblings) {
+    f->previous = before;
+    if (before) before->next = f;
+    before = f;
+  }
+}
 
 bool match(std::string_view selector_text, const std::vector<const Fake*>& path) {
   Selector selector;
@@ -141,9 +152,7 @@ TEST(SvgCss, StructuralPseudoClassesNotAndUserActions) {
   Fake svg{"svg", {}};
   svg.root = true;
   Fake a{"rect", {{"class", "x"}}}, b{"circle", {}}, c{"rect", {}};
-  a.next = &b;
-  b.previous = &a, b.next = &c;
-  c.previous = &b;
+  link_siblings({&a, &b, &c});
   const Fake only{"path", {}};
   Fake link{"a", {{"xlink:href", "#t"}}};
   const std::vector<const Fake*> pa{&svg, &a}, pb{&svg, &b}, pc{&svg, &c}, po{&svg, &only}, pl{&svg, &link};
@@ -168,9 +177,7 @@ TEST(SvgCss, NextSiblingCombinator) {
   Fake svg{"svg", {}};
   svg.root = true;
   Fake g{"g", {{"class", "k"}}}, a{"rect", {{"class", "x"}}}, b{"circle", {}}, c{"rect", {}};
-  a.next = &b;
-  b.previous = &a, b.next = &c;
-  c.previous = &b;
+  link_siblings({&a, &b, &c});
   const std::vector<const Fake*> pa{&svg, &g, &a}, pb{&svg, &g, &b}, pc{&svg, &g, &c};
   EXPECT_TRUE(match("rect + circle", pb));
   EXPECT_TRUE(match(".x + circle + rect", pc));

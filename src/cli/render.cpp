@@ -388,16 +388,6 @@ svg::DrawSettings draw_settings(const RenderArgs& a) {
   return settings;
 }
 
-/// Nodes of a tree's groups (not counting clip, mask and pattern content), counted up to `limit`.
-std::size_t count_nodes(const svg::Group& g, std::size_t limit) {
-  std::size_t n = g.children.size();
-  for (const svg::Node& child : g.children) {
-    if (n >= limit) break;
-    if (const auto* sub = std::get_if<svg::Group>(&child.value)) n += count_nodes(*sub, limit - n);
-  }
-  return n;
-}
-
 /// Above this many nodes a single frame is drawn straight onto the image instead of recorded, planned and
 /// replayed: a recording holds a copy of every draw call's state (about 1 KB each), which for a document of a
 /// million shapes was gigabytes on top of the tree, and the plan's savings (culled calls, folded layers) are
@@ -415,7 +405,7 @@ void warn_about_offscreen_budget(bool over_budget, std::ostream& log) {
 template <class T>
 void render_tree(const svg::Tree& tree, const RenderArgs& a, const std::string& output, std::ostream& log) {
   const auto [w, h] = svg::tree_output_size(tree, a.width, a.height, a.zoom);
-  if (a.bench_frames == 0 && count_nodes(tree.root, kMaxRecordedNodes + 1) > kMaxRecordedNodes) {
+  if (a.bench_frames == 0 && svg::count_nodes(tree.root, kMaxRecordedNodes) > kMaxRecordedNodes) {
     svg::DrawStats stats;
     render_frames<T>(w, h, a, output, [&](BasicImage<T>& image, bool) {
       image.clear(a.background);

@@ -322,7 +322,9 @@ Path& Path::add_ellipse(Point c, double rx, double ry) {
   reserve_more(n + 2, 3 * n + 1);  // a move, the cubics, a close
   return atomically([&] {
     move_to({c.x + rx, c.y});
-    auto point = [&](int i) { return i == n ? Point{c.x + rx, c.y} : Point{c.x + rx * unit.cos_t[i], c.y + ry * unit.sin_t[i]}; };
+    auto point = [&](int i) {  // the last point is the first one exactly
+      return i == n ? Point{c.x + rx, c.y} : Point{c.x + rx * unit.cos_t[i], c.y + ry * unit.sin_t[i]};
+    };
     auto tangent = [&](int i) { return Point{-rx * unit.sin_t[i], ry * unit.cos_t[i]}; };
     for (int i = 0; i < n; ++i) {
       const Point from = point(i), to = point(i + 1);

@@ -369,14 +369,18 @@ namespace {
 constexpr int kMaxVarDepth = 16;
 constexpr std::size_t kMaxVarResult = 64 * 1024;
 
+/// Whether the bracket at v[paren] opens a var( function: "var" (any case) right before it, not the end of a
+/// longer name.
+bool is_var_call(std::string_view v, std::size_t paren) {
+  return paren >= 3 && lower(v.substr(paren - 3, 3)) == "var" && (paren == 3 || !is_name_char(v[paren - 4]));
+}
+
 bool substitute_at(std::string_view v, const CustomProperties& custom, std::string& out, int depth) {
   if (depth > kMaxVarDepth) return false;
   std::size_t i = 0;
   while (i < v.size()) {
     const std::size_t at = v.find('(', i);
-    // A var( function: "var" (any case) right before the bracket, not the end of a longer name.
-    const bool is_var = at != std::string_view::npos && at >= i + 3 && lower(v.substr(at - 3, 3)) == "var" &&
-                        (at == 3 || !is_name_char(v[at - 4]));
+    const bool is_var = at != std::string_view::npos && at >= i + 3 && is_var_call(v, at);
     if (!is_var) {
       const std::size_t end = at == std::string_view::npos ? v.size() : at + 1;
       out.append(v.substr(i, end - i));
@@ -405,6 +409,13 @@ bool substitute_at(std::string_view v, const CustomProperties& custom, std::stri
 }
 
 }  // namespace
+
+bool has_var(std::string_view value) {
+  for (std::size_t at = value.find('('); at != std::string_view::npos; at = value.find('(', at + 1)) {
+    if (is_var_call(value, at)) return true;
+  }
+  return false;
+}
 
 bool substitute_vars(std::string_view value, const CustomProperties& custom, std::string& out) {
   out.clear();

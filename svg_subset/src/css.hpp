@@ -216,6 +216,9 @@ using CustomProperties = std::unordered_map<std::string, std::string>;
 /// a result over 64 KiB (references that double at each level) is invalid as well.
 bool substitute_vars(std::string_view value, const CustomProperties& custom, std::string& out);
 
+/// Whether `value` holds a var( function (any letter case): what substitute_vars would replace.
+bool has_var(std::string_view value);
+
 /// Where a declaration in the cascade came from, lowest precedence first.
 enum class Origin : std::uint8_t { PresentationAttribute, Sheet, StyleAttribute, SheetImportant, StyleImportant };
 

@@ -158,16 +158,6 @@ struct ViewBox {
   double x, y, width, height;
 };
 
-/// Whether a value holds "var(" in any letter case (a custom property reference to substitute).
-bool has_var_reference(std::string_view v) {
-  for (std::size_t at = v.find('('); at != std::string_view::npos; at = v.find('(', at + 1)) {
-    if (at >= 3 && detail::to_lower(v[at - 3]) == 'v' && detail::to_lower(v[at - 2]) == 'a' &&
-        detail::to_lower(v[at - 1]) == 'r')
-      return true;
-  }
-  return false;
-}
-
 /// Adapter for css::matches_path on pugixml nodes.
 struct XmlAdapter {
   static std::string_view name(pugi::xml_node n) {
@@ -699,7 +689,8 @@ class Builder {
     for (const css::Cascaded& c : cascade) {
       const css::Declaration& d = *c.declaration;
       if (!is_custom(d.name)) continue;
-      if (!own_custom) own_custom = std::make_shared<css::CustomProperties>(style.custom ? *style.custom : css::CustomProperties{});
+      if (!own_custom)
+        own_custom = std::make_shared<css::CustomProperties>(style.custom ? *style.custom : css::CustomProperties{});
       if (d.value == "initial" || d.value.empty())
         own_custom->erase(d.name);
       else if (d.value != "inherit")
@@ -715,7 +706,7 @@ class Builder {
       if (is_custom(d.name)) continue;
       if (!is_font_size(c) && font_size_ != style.text.font_size) font_size_ = style.text.font_size;
       std::string_view value = d.value;
-      if (has_var_reference(value)) {
+      if (css::has_var(value)) {
         // A reference with no value makes the declaration invalid at computed-value time: the property is then
         // `unset` (CSS Custom Properties 1, 3.1), not the value of a declaration it won over.
         if (!css::substitute_vars(value, style.custom ? *style.custom : kNoCustom, substituted)) {
@@ -1880,15 +1871,6 @@ class Builder {
       return 0.0;
     }
     return v;
-  }
-
-  static std::size_t count_nodes(const Group& g) {
-    std::size_t n = 1;
-    for (const Node& child : g.children) {
-      if (const Group* sub = std::get_if<Group>(&child.value)) n += count_nodes(*sub);
-      else ++n;
-    }
-    return n;
   }
 
   /// The image an href names, loaded once per document (a <use> of an <image> shares the pixels).

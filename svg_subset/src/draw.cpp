@@ -614,6 +614,16 @@ class Drawer {
 
 }  // namespace
 
+std::size_t count_nodes(const Group& g, std::size_t limit) {
+  std::size_t n = 1;
+  for (const Node& child : g.children) {
+    if (n > limit) break;
+    const Group* sub = std::get_if<Group>(&child.value);
+    n += sub ? count_nodes(*sub, limit - n) : 1;
+  }
+  return n;
+}
+
 std::optional<Rect> object_bounds(const Group& g, const Affine& m) {
   std::optional<Rect> box;
   for (const Node& child : g.children) {

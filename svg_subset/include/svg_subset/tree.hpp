@@ -177,6 +177,10 @@ struct Node {
 /// count, images by their viewport) mapped by `m`; nothing when the group has no geometry.
 std::optional<Rect> object_bounds(const Group& g, const Affine& m);
 
+/// The nodes of `g`, itself included, with those of every group below it (not clip, mask or pattern content);
+/// the count stops soon after it passes `limit`.
+std::size_t count_nodes(const Group& g, std::size_t limit = SIZE_MAX);
+
 /// A parsed document as a resolved tree.
 struct Tree {
   double width = 0, height = 0;  ///< intrinsic size in CSS px
