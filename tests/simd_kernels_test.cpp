@@ -1,11 +1,13 @@
 // The hand-written AVX2 kernel (the running sum of a row of cells) must give the bits of its portable version,
 // which runs where AVX2 is missing: the same picture on every machine. Each test draws with the portable kernel
 // forced and without, and compares exactly. (On a machine without AVX2 both runs take the portable path and the
-// comparison holds trivially.) The 8-bit source-over loops (compiled for AVX2 and for any x86-64 by the compiler)
-// are checked against the rounding rule.
+// comparison holds trivially.) The 8-bit source-over loops are checked against the rounding rule, and their
+// hand-written AVX2 versions (a constant colour under constant coverage, a solid colour under a row of coverage)
+// against the portable loops on every run length and alignment.
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 #include <random>
 
 #include "paint/blend.hpp"
@@ -148,6 +150,46 @@ TEST(SourceOverRuns, MatchTheRoundingRuleForEveryCase) {
     ++runs;
   }
   EXPECT_GT(runs, 250);
+}
+
+TEST(SourceOverKernels, Avx2GivesThePortableBitsOnEveryLengthAndAlignment) {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "no AVX2 on this processor: only the portable loops run";
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(-0.3f, 1.3f);
+  constexpr int kMax = 70;
+  std::vector<std::uint32_t> base(kMax + 8), a(kMax + 8), b(kMax + 8);
+  std::vector<float> cov(kMax + 8);
+  const float scales[] = {1.f, 0.5f, 0.999f, 1.7f, -1.f, std::numeric_limits<float>::quiet_NaN()};
+  int runs = 0;
+  for (int n = 0; n <= kMax; ++n) {
+    for (int offset = 0; offset < 8; ++offset) {  // every position against a 32-byte boundary
+      for (auto& p : base) {  // premultiplied pixels
+        const std::uint32_t al = rng() % 256;
+        p = al << 24 | (rng() % (al + 1)) << 16 | (rng() % (al + 1)) << 8 | (rng() % (al + 1));
+      }
+      for (auto& c : cov) c = rng() % 5 == 0 ? (rng() % 2 ? 0.f : 1.f) : unit(rng);
+      if (n > 0) cov[static_cast<std::size_t>(offset)] = std::numeric_limits<float>::quiet_NaN();  // NaN: 0
+      const std::uint32_t al = rng() % 256;
+      const std::uint32_t color = al << 24 | (rng() % (al + 1)) << 16 | (rng() % (al + 1)) << 8 | (rng() % (al + 1));
+      a = base;
+      b = base;
+      detail::over8_constant_avx2(a.data() + offset, n, color);
+      detail::over8_constant_portable(b.data() + offset, n, color);
+      ASSERT_EQ(a, b) << "constant, n " << n << " offset " << offset;  // also: nothing outside the run written
+      const float scale = scales[rng() % std::size(scales)];
+      a = base;
+      b = base;
+      detail::over8_solid_avx2(a.data() + offset, n, cov.data() + offset, scale, color);
+      detail::over8_solid_portable(b.data() + offset, n, cov.data() + offset, scale, color);
+      ASSERT_EQ(a, b) << "solid, n " << n << " offset " << offset << " scale " << scale;
+      ++runs;
+    }
+  }
+  EXPECT_EQ(runs, (kMax + 1) * 8);
+#else
+  GTEST_SKIP() << "no AVX2 kernels in this build";
+#endif
 }
 
 }  // namespace

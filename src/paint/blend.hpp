@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "raster/cpu.hpp"
 #include "vraster/composite.hpp"
 
 namespace vraster::detail {
@@ -292,8 +293,18 @@ inline int to_aligned32(const void* px, int n) {
 // The source-over loops (composite.cpp: compiled for AVX2 and for any x86-64, picked at load time).
 /// n pixels set to one colour.
 void store8(std::uint32_t* px, int n, std::uint32_t c);
-/// One colour, one coverage for the whole run.
+/// One colour, one coverage for the whole run (portable loop; over8_constant picks).
+void over8_constant_portable(std::uint32_t* px, int n, std::uint32_t s);
+/// One colour c under per-pixel coverage: px[i] = over8(scale8(c, quantize8(coverage[i] * scale)), px[i]).
+void over8_solid_portable(std::uint32_t* px, int n, const float* coverage, float scale, std::uint32_t c);
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+// over8_avx2.cpp: the same two loops by hand in AVX2, the same bits.
+void over8_constant_avx2(std::uint32_t* px, int n, std::uint32_t s);
+void over8_solid_avx2(std::uint32_t* px, int n, const float* coverage, float scale, std::uint32_t c);
+#endif
+/// The two loops every fill ends in: the AVX2 kernel where the processor has it, else the portable loop.
 void over8_constant(std::uint32_t* px, int n, std::uint32_t s);
+void over8_solid(std::uint32_t* px, int n, const float* coverage, float scale, std::uint32_t c);
 /// A row of colours scaled by one coverage k.
 void over8_row(std::uint32_t* px, const std::uint32_t* src, int n, std::uint32_t k);
 /// Colours (src_step 0: one colour) scaled by per-pixel coverage x scale, optionally lerped by a clip.
@@ -326,6 +337,8 @@ void composite_run(T* dst, const T* src, int src_step, const float* coverage, fl
         over8_row(px, s, h, k);
         over8_row(px + h, s + h, n - h, k);
       }
+    } else if (src_step == 0 && clip == nullptr) {
+      over8_solid(px, n, coverage, scale, s[0]);
     } else {
       const int h = to_aligned32(px, n), step = src_step / 4;
       over8_masked(px, s, step, coverage, scale, clip, h);

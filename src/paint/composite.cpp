@@ -34,11 +34,30 @@ VRASTER_PAINT_CLONES void store8(std::uint32_t* px, int n, std::uint32_t c) {
 }
 
 /// One colour, one coverage for the whole run.
-VRASTER_PAINT_CLONES void over8_constant(std::uint32_t* px, int n, std::uint32_t s) {
+VRASTER_PAINT_CLONES void over8_constant_portable(std::uint32_t* px, int n, std::uint32_t s) {
   const std::uint32_t inv = 255u - (s >> 24);
   const int head = to_aligned32(px, n);
   for (int i = 0; i < head; ++i) px[i] = s + scale8(px[i], inv);
   for (int i = head; i < n; ++i) px[i] = s + scale8(px[i], inv);
+}
+
+VRASTER_PAINT_CLONES void over8_solid_portable(std::uint32_t* px, int n, const float* coverage, float scale,
+                                               std::uint32_t c) {
+  for (int i = 0; i < n; ++i) px[i] = over8(scale8(c, quantize8(coverage[i] * scale)), px[i]);
+}
+
+void over8_constant(std::uint32_t* px, int n, std::uint32_t s) {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  if (cpu_has_avx2()) return over8_constant_avx2(px, n, s);
+#endif
+  over8_constant_portable(px, n, s);
+}
+
+void over8_solid(std::uint32_t* px, int n, const float* coverage, float scale, std::uint32_t c) {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  if (cpu_has_avx2()) return over8_solid_avx2(px, n, coverage, scale, c);
+#endif
+  over8_solid_portable(px, n, coverage, scale, c);
 }
 
 /// A row of colours scaled by one coverage k.
@@ -57,9 +76,8 @@ VRASTER_PAINT_CLONES void over8_masked(std::uint32_t* px, const std::uint32_t* s
   const std::uint32_t k = quantize8(scale);
   if (src_step == 0) {
     const std::uint32_t c = src[0];
-    if (clip == nullptr) {
-      for (int i = 0; i < n; ++i) px[i] = over8(scale8(c, quantize8(coverage[i] * scale)), px[i]);
-    } else if (coverage == nullptr) {
+    // With a clip (without one, composite_run calls over8_constant or over8_solid).
+    if (coverage == nullptr) {
       const std::uint32_t s = scale8(c, k);
       for (int i = 0; i < n; ++i) px[i] = lerp8(px[i], over8(s, px[i]), clip[i]);
     } else {

@@ -9,23 +9,7 @@
 namespace vraster {
 namespace {
 
-using detail::over8;   // blend.hpp: the 8-bit source-over arithmetic shared with the paint compositor
 using detail::scale8;
-
-// The hot loop, compiled twice: for AVX2 and for any x86-64, picked at load time (GCC function multiversioning).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define VRASTER_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define VRASTER_CLONES
-#endif
-
-// Source-over of a colour scaled by per-pixel coverage.
-VRASTER_CLONES void blend_row8(std::uint32_t* px, int n, const float* coverage, std::uint32_t color) {
-  for (int i = 0; i < n; ++i) {
-    const auto cov = static_cast<std::uint32_t>(coverage[i] * 255.f + 0.5f);
-    px[i] = over8(scale8(color, cov), px[i]);
-  }
-}
 
 inline std::uint64_t mul_div16(std::uint64_t a, std::uint64_t b) { return (a * b + 32767) / 65535; }
 
@@ -79,7 +63,7 @@ void SolidCompositor<T>::row8(int y, int x0, int x1, const float* coverage) {
   if (premul_[3] == 0) return;
   const std::uint32_t color = static_cast<std::uint32_t>(premul_[0] | premul_[1] << 8 | premul_[2] << 16 | premul_[3] << 24);
   auto* px = reinterpret_cast<std::uint32_t*>(static_cast<void*>(image_.pixel(x0, y)));
-  blend_row8(px, x1 - x0, coverage, color);
+  detail::over8_solid(px, x1 - x0, coverage, 1.f, color);  // coverage in [0, 1]: quantize8 is round(255 c)
 }
 
 template <class T>
