@@ -96,27 +96,47 @@ template <FillRule R>
   }
 }
 
+// One block of four cells v: their prefix sums in a register ([a, b, c, d] + [0, a, b, c] = [a, a+b, b+c, c+d];
+// plus [0, 0, a, a+b] = the prefix sums, added in sweep_block_scalar's order), coverage under the rule, snapped, as
+// four floats; the carried sum moved past the block.
 template <FillRule R>
-[[gnu::target("avx2")]] void sweep_cells_avx2(double* cells, float* cov, int n, double& sum) {
+[[gnu::target("avx2"), gnu::always_inline]] inline void sweep_block_avx2(__m256d v, float* cov, __m256d& carry) {
   const __m256d zero = _mm256_setzero_pd();
   const __m256d lo = _mm256_set1_pd(kSnap), hi = _mm256_set1_pd(1.0 - kSnap), one = _mm256_set1_pd(1.0);
+  const __m256d t1 = _mm256_add_pd(v, _mm256_blend_pd(_mm256_permute4x64_pd(v, 0x90), zero, 0x1));
+  const __m256d t2 = _mm256_add_pd(t1, _mm256_permute2f128_pd(t1, t1, 0x08));
+  const __m256d s = _mm256_add_pd(carry, t2);
+  carry = _mm256_add_pd(carry, _mm256_permute4x64_pd(t2, 0xFF));
+  __m256d c = rule_coverage_avx2<R>(s);
+  c = _mm256_andnot_pd(_mm256_cmp_pd(c, lo, _CMP_LT_OQ), c);       // below kSnap: 0
+  c = _mm256_blendv_pd(c, one, _mm256_cmp_pd(c, hi, _CMP_GT_OQ));  // above 1 - kSnap: 1
+  _mm_storeu_ps(cov, _mm256_cvtpd_ps(c));
+}
+
+template <FillRule R>
+[[gnu::target("avx2")]] void sweep_cells_avx2(double* cells, float* cov, int n, double& sum) {
   __m256d carry = _mm256_set1_pd(sum);
   int i = 0;
   for (; i + 4 <= n; i += 4) {
-    const __m256d v = _mm256_loadu_pd(cells + i);
-    _mm256_storeu_pd(cells + i, zero);
-    // [a, b, c, d] + [0, a, b, c] = [a, a+b, b+c, c+d]; + [0, 0, a, a+b] = the block's prefix sums.
-    const __m256d t1 = _mm256_add_pd(v, _mm256_blend_pd(_mm256_permute4x64_pd(v, 0x90), zero, 0x1));
-    const __m256d t2 = _mm256_add_pd(t1, _mm256_permute2f128_pd(t1, t1, 0x08));
-    const __m256d s = _mm256_add_pd(carry, t2);
-    carry = _mm256_add_pd(carry, _mm256_permute4x64_pd(t2, 0xFF));
-    __m256d c = rule_coverage_avx2<R>(s);
-    c = _mm256_andnot_pd(_mm256_cmp_pd(c, lo, _CMP_LT_OQ), c);                 // below kSnap: 0
-    c = _mm256_blendv_pd(c, one, _mm256_cmp_pd(c, hi, _CMP_GT_OQ));            // above 1 - kSnap: 1
-    _mm_storeu_ps(cov + i, _mm256_cvtpd_ps(c));
+    sweep_block_avx2<R>(_mm256_loadu_pd(cells + i), cov + i, carry);
+    _mm256_storeu_pd(cells + i, _mm256_setzero_pd());
   }
   sum = _mm_cvtsd_f64(_mm256_castpd256_pd128(carry));
   if (i < n) sweep_block_scalar<R>(cells + i, cov + i, n - i, sum);
+}
+
+// A run of n <= 4 cells in a padded row (the row sweep's) as one AVX2 block: the cells past the run (untouched
+// zeros or the next run's, left as they are) count as zero, as in sweep_block_scalar; the coverage written past the
+// run is overwritten before it is read.
+template <FillRule R>
+[[gnu::target("avx2")]] inline void sweep_short_run_avx2(double* cells, float* cov, int n, double& sum) {
+  const __m256i lanes = _mm256_setr_epi64x(0, 1, 2, 3);
+  const __m256d in_run = _mm256_castsi256_pd(_mm256_cmpgt_epi64(_mm256_set1_epi64x(n), lanes));
+  const __m256d v = _mm256_loadu_pd(cells);
+  _mm256_storeu_pd(cells, _mm256_andnot_pd(in_run, v));  // the run's cells zeroed, the others kept
+  __m256d carry = _mm256_set1_pd(sum);
+  sweep_block_avx2<R>(_mm256_and_pd(in_run, v), cov, carry);
+  sum = _mm_cvtsd_f64(_mm256_castpd256_pd128(carry));
 }
 
 #endif
@@ -219,9 +239,13 @@ inline void clear_words(std::uint64_t* bits, int w0, int w1) {
 // of being a span of their own: one compositor call covers several edges.
 constexpr int kMergeGap = 24;
 
+// Row padding the short-run AVX2 block needs: cells and coverage past the last cell a piece can write.
+constexpr int kRowPadding = 4;
+
 // Sweeps one accumulated row: a running sum over touched cells, constant spans over long untouched stretches.
-// Leaves the accumulation cells and the touched bits zero.
-template <FillRule R>
+// Leaves the accumulation cells and the touched bits zero. kAvx2: compiled into an AVX2 function whose row has
+// kRowPadding cells (and coverage) of padding, so runs of up to four cells take one AVX2 block.
+template <FillRule R, bool kAvx2 = false>
 [[gnu::always_inline]] inline void resolve_row(int y, int width, int x_lo, int x_hi, double* acc, std::uint64_t* bits, float* cov,
                  CoverageSink& sink) {
   double sum = 0;
@@ -257,8 +281,15 @@ template <FillRule R>
     if (t >= limit) break;
     const int e = next_clear(bits, t, limit);
     if (run < 0) run = t;
-    if (e - t <= 4) {
-      sweep_block_scalar<R>(acc + t, cov + (t - run), e - t, sum);  // most runs: a cell or two, not worth a call
+    if (e - t <= 4) {  // most runs: a cell or two, not worth a call
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+      if constexpr (kAvx2) {
+        sweep_short_run_avx2<R>(acc + t, cov + (t - run), e - t, sum);
+      } else
+#endif
+      {
+        sweep_block_scalar<R>(acc + t, cov + (t - run), e - t, sum);
+      }
     } else {
       sweep_cells<R>(acc + t, cov + (t - run), e - t, sum);
     }

@@ -33,11 +33,27 @@ using detail::with_rule;
 // A row with at least one active edge per this many pixels of the image's width is crowded (below).
 constexpr std::size_t kCrowdedCellsPerEdge = 4;
 
-template <FillRule R>
-VRASTER_CLONES void sweep_analytic_rows(const std::vector<Edge>& edges, const std::vector<std::uint32_t>& order,
-                         const std::vector<std::uint32_t>& bucket_start, std::vector<std::uint32_t>& active,
-                         std::vector<double>& active_x, int y_min, int y_from, int y_to, int width, double* acc,
-                         std::uint64_t* bits, float* cov, CoverageSink& sink) {
+// A band's row buffers (BandScratch's, sized for the row with kRowPadding).
+struct RowBuffers {
+  std::vector<std::uint32_t>& active;
+  std::vector<double>& active_x;
+  double* acc;
+  std::uint64_t* bits;
+  float* cov;
+};
+
+template <FillRule R, bool kAvx2>
+[[gnu::always_inline]] inline void sweep_analytic_rows(const detail::EdgeTableView& table, const RowBuffers& b,
+                                                       int y_from, int y_to, int width, CoverageSink& sink) {
+  const std::vector<Edge>& edges = table.edges;
+  const std::vector<std::uint32_t>& order = table.order;
+  const std::vector<std::uint32_t>& bucket_start = table.bucket_start;
+  const int y_min = table.y_min;
+  std::vector<std::uint32_t>& active = b.active;
+  std::vector<double>& active_x = b.active_x;
+  double* const acc = b.acc;
+  std::uint64_t* const bits = b.bits;
+  float* const cov = b.cov;
   // active_x[k]: where active edge k enters the current row (its x at max(y0, row top)). An edge that goes on below
   // the row leaves at x_at(bottom), which is the very number x_at(top) gives in the next row: it is kept instead of
   // computed twice. (Edges active from before y_from enter with x_at(y_from), the same number again.)
@@ -88,10 +104,25 @@ VRASTER_CLONES void sweep_analytic_rows(const std::vector<Edge>& edges, const st
     active_x.erase(active_x.begin() + static_cast<std::ptrdiff_t>(kept), active_x.end());
     if (x_lo <= x_hi) {
       if (crowded) mark_cells(bits, x_lo, x_hi);
-      resolve_row<R>(y, width, x_lo, x_hi, acc, bits, cov, sink);
+      resolve_row<R, kAvx2>(y, width, x_lo, x_hi, acc, bits, cov, sink);
     }
   }
 }
+
+// The row loop compiled twice, for AVX2 (with the AVX2 block for short runs) and for any x86-64; the AVX2 build has
+// no FMA, and the blocks add in one order, so both give the same bits.
+template <FillRule R>
+void sweep_analytic_rows_portable(const detail::EdgeTableView& table, const RowBuffers& b, int y_from, int y_to,
+                                  int width, CoverageSink& sink) {
+  sweep_analytic_rows<R, false>(table, b, y_from, y_to, width, sink);
+}
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+template <FillRule R>
+[[gnu::target("avx2")]] void sweep_analytic_rows_avx2(const detail::EdgeTableView& table, const RowBuffers& b,
+                                                      int y_from, int y_to, int width, CoverageSink& sink) {
+  sweep_analytic_rows<R, true>(table, b, y_from, y_to, width, sink);
+}
+#endif
 
 // Small paths: every edge walks its own rows into a dense block of cells (the path's rows x columns), then one
 // running sum per row. The cell arithmetic is the row sweep's; what it saves is the per-row bookkeeping (edge
@@ -270,16 +301,20 @@ void detail::RasterizerImpl::sweep_analytic(FillRule rule, int width, CoverageSi
 
 void detail::RasterizerImpl::sweep_analytic_band(const EdgeTableView& table, FillRule rule, int width, int y_from,
                                                  int y_to, BandScratch& s, CoverageSink& sink) {
-  const std::size_t cells = static_cast<std::size_t>(width) + 2;
-  if (s.accumulation.size() < cells) s.accumulation.assign(cells, 0.0);
+  const std::size_t cells = static_cast<std::size_t>(width) + 2;  // a piece writes up to cell width + 1
+  const std::size_t padded = cells + detail::kRowPadding;          // resolve_row's short-run block reads past
+  if (s.accumulation.size() < padded) s.accumulation.assign(padded, 0.0);
   if (s.touched.size() < cells / 64 + 1) s.touched.assign(cells / 64 + 1, 0);
-  if (s.coverage.size() < cells) s.coverage.resize(cells);
+  if (s.coverage.size() < padded) s.coverage.resize(padded);
   // An edge whose bottom is at or above the band's top was retired before it (e.y1 > bottom keeps an edge).
   start_active(table, y_from, y_from, s.active);
+  const RowBuffers buffers{s.active, s.active_x, s.accumulation.data(), s.touched.data(), s.coverage.data()};
   with_rule(rule, [&](auto r) {
-    sweep_analytic_rows<decltype(r)::value>(table.edges, table.order, table.bucket_start, s.active, s.active_x,
-                                            table.y_min, y_from, y_to, width, s.accumulation.data(), s.touched.data(),
-                                            s.coverage.data(), sink);
+    constexpr FillRule R = decltype(r)::value;
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+    if (detail::cpu_has_avx2()) return sweep_analytic_rows_avx2<R>(table, buffers, y_from, y_to, width, sink);
+#endif
+    sweep_analytic_rows_portable<R>(table, buffers, y_from, y_to, width, sink);
   });
 }
 
