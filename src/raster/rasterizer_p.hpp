@@ -163,6 +163,7 @@ class RasterizerImpl {
     std::vector<std::uint64_t> touched;   // analytic sweep: one bit per cell written in the current row
     std::vector<float> coverage;          // analytic sweep: coverage handed to the sink
     std::vector<double> dense_block;      // queued dense fills: rows x columns of cells, zero between fills
+    std::vector<int> dense_extent;        // queued dense fills: first and last cell written, per row
     BucketScratch bucket;                 // building queued fills
   };
   /// How many bands rows [y_min_, y_max_) of edges_ are cut into: 1 without threads, for a sink that wants its
@@ -205,6 +206,7 @@ class RasterizerImpl {
   std::unique_ptr<BandPool> pool_;           // set_threads(n > 1): the workers that sweep bands
   std::vector<float> row_coverage_;          // dense sweep: coverage handed to the sink
   std::vector<double> dense_block_;          // small paths: rows x columns of cells, zero between fills
+  std::vector<int> dense_extent_;            // small paths: first and last cell written, per row
   std::vector<float> rect_coverage_;         // fill_rect: the coverage of up to three rows
   std::vector<double> rect_cells_;           // fill_rect: analytic cells of one row, zero between fills
   std::vector<float> mask_cells_;            // fill_mask: rows x stride float cells, zero between fills

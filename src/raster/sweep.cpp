@@ -128,36 +128,76 @@ template <FillRule R>
 // running sum per row. The cell arithmetic is the row sweep's; what it saves is the per-row bookkeeping (edge
 // table, active list, touched bits), which dominates glyph-sized paths. Coordinates are shifted by the block's
 // integer left column, which is exact for doubles, so the cell fractions are the same numbers.
-template <FillRule R>
+// Wide blocks (kTrimmedDenseColumns columns or more; kTrimmed) note in extent[2 r], extent[2 r + 1] the first and
+// last cell the pieces of row r wrote, and the running sum runs only from the block of four that holds the first
+// to the block that holds the last (blocks counted from column 0, so the sums are added in the same order as a
+// sweep of the whole row); the cells outside are zero, so the sum is 0 left of them and constant right of them.
+// Narrow blocks sweep whole rows: there is little outside to skip, and noting it would cost more.
+constexpr int kTrimmedDenseColumns = 24;
+
+template <FillRule R, bool kTrimmed>
 VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns,
-                                     int width, double* block, float* cov, CoverageSink& sink) {
+                                     int width, double* block, int* extent, float* cov, CoverageSink& sink) {
   const double shift = x_base;
+  if constexpr (kTrimmed) {
+    for (int r = 0; r < y_max - y_min; ++r) {
+      extent[2 * r] = columns;
+      extent[2 * r + 1] = -1;
+    }
+  }
   for (const Edge& e : edges) {
     const int r0 = std::max(static_cast<int>(std::floor(e.y0)), y_min);
     const int r1 = std::min(static_cast<int>(std::ceil(e.y1)), y_max);
     for (int y = r0; y < r1; ++y) {
       const double ya = std::max(e.y0, static_cast<double>(y)), yb = std::min(e.y1, y + 1.0);
       if (!(yb > ya)) continue;
-      const double xa = ya == e.y0 ? e.x0 : e.x_at(ya);
-      const double xb = yb == e.y1 ? e.x1 : e.x_at(yb);
-      accumulate_piece(block + static_cast<std::size_t>(y - y_min) * columns, xa - shift, xb - shift,
-                       (yb - ya) * e.winding);
+      const double xa = (ya == e.y0 ? e.x0 : e.x_at(ya)) - shift;
+      const double xb = (yb == e.y1 ? e.x1 : e.x_at(yb)) - shift;
+      accumulate_piece(block + static_cast<std::size_t>(y - y_min) * columns, xa, xb, (yb - ya) * e.winding);
+      if constexpr (kTrimmed) {
+        int* row_extent = extent + 2 * (y - y_min);
+        row_extent[0] = std::min(row_extent[0], static_cast<int>(std::min(xa, xb)));
+        row_extent[1] = std::max(row_extent[1], static_cast<int>(std::max(xa, xb)) + 1);
+      }
     }
   }
   const int visible = std::min(columns, width - x_base);  // the last cells may lie at or right of the image edge
   for (int y = y_min; y < y_max; ++y) {
     double* row = block + static_cast<std::size_t>(y - y_min) * columns;
     double sum = 0;
-    detail::sweep_cells<R>(row, cov, columns, sum);
     int a = 0, b = visible;
+    float c;  // the coverage right of the swept cells
+    if constexpr (kTrimmed) {
+      const int* row_extent = extent + 2 * (y - y_min);
+      if (row_extent[1] < 0) continue;  // no piece in this row: coverage 0 all along
+      const int from = row_extent[0] & ~3, to = std::min(columns, (row_extent[1] + 4) & ~3);
+      detail::sweep_cells<R>(row + from, cov + from, to - from, sum);
+      c = coverage_of<R>(sum);
+      a = from;
+      if (c > 0) {
+        std::fill(cov + std::min(to, visible), cov + visible, c);
+      } else {
+        b = std::min(b, to);
+      }
+    } else {
+      detail::sweep_cells<R>(row, cov, columns, sum);
+      c = coverage_of<R>(sum);
+    }
     while (a < b && cov[a] == 0) ++a;
     while (b > a && cov[b - 1] == 0) --b;
     if (b > a) sink.row(y, x_base + a, x_base + b, cov + a);
     // Edges right of the image were dropped, so the sum need not return to 0: it holds to the row's end.
-    if (x_base + columns < width) {
-      const float c = coverage_of<R>(sum);
-      if (c > 0) sink.span(y, x_base + columns, width, c);
-    }
+    if (x_base + columns < width && c > 0) sink.span(y, x_base + columns, width, c);
+  }
+}
+
+template <FillRule R>
+void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns, int width,
+                      double* block, int* extent, float* cov, CoverageSink& sink) {
+  if (columns >= kTrimmedDenseColumns) {
+    sweep_dense_rows<R, true>(edges, y_min, y_max, x_base, columns, width, block, extent, cov, sink);
+  } else {
+    sweep_dense_rows<R, false>(edges, y_min, y_max, x_base, columns, width, block, extent, cov, sink);
   }
 }
 
@@ -185,11 +225,14 @@ bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, i
   if (!fits_dense(edges_, y_min_, y_max_, columns, dense_limit_)) return false;
   const std::int64_t cells = static_cast<std::int64_t>(columns) * (y_max_ - y_min_);
   if (dense_block_.size() < static_cast<std::size_t>(cells)) dense_block_.assign(static_cast<std::size_t>(cells), 0.0);
+  const auto extents = static_cast<std::size_t>(2 * (y_max_ - y_min_));
+  if (dense_extent_.size() < extents) dense_extent_.resize(extents);
   if (row_coverage_.size() < static_cast<std::size_t>(columns)) row_coverage_.resize(static_cast<std::size_t>(columns));
   double* block = dense_block_.data();
   float* cov = row_coverage_.data();
   with_rule(rule, [&](auto r) {
-    sweep_dense_rows<decltype(r)::value>(edges_, y_min_, y_max_, x_base, columns, width, block, cov, sink);
+    sweep_dense_rows<decltype(r)::value>(edges_, y_min_, y_max_, x_base, columns, width, block,
+                                         dense_extent_.data(), cov, sink);
   });
   return true;
 }
@@ -201,10 +244,12 @@ void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from
   const auto columns = static_cast<std::size_t>(fill.columns);
   const std::size_t cells = columns * static_cast<std::size_t>(y_to - y_from);
   if (s.dense_block.size() < cells) s.dense_block.assign(cells, 0.0);
+  const auto extents = static_cast<std::size_t>(2 * (y_to - y_from));
+  if (s.dense_extent.size() < extents) s.dense_extent.resize(extents);
   if (s.coverage.size() < columns) s.coverage.resize(columns);
   with_rule(fill.rule, [&](auto r) {
     sweep_dense_rows<decltype(r)::value>(fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width,
-                                         s.dense_block.data(), s.coverage.data(), *fill.sink);
+                                         s.dense_block.data(), s.dense_extent.data(), s.coverage.data(), *fill.sink);
   });
 }
 
