@@ -299,6 +299,40 @@ template <FillRule R, bool kAvx2 = false>
   clear_words(bits, x_lo >> 6, x_hi >> 6);
 }
 
+// Rows whose pieces all fall within this many cells (thin shapes, the tips of others) are swept as one run.
+constexpr int kNarrowRowCells = 32;
+
+// resolve_row for a row whose touched cells lie in [x_lo, x_hi], at most kNarrowRowCells of them, without touched
+// bits: the cells in between are swept too (untouched ones are zero, and add nothing to the sum), with no search
+// for runs. One coverage call for the cells, one span for what lies right of them. Same padding and kAvx2 as
+// resolve_row.
+template <FillRule R, bool kAvx2 = false>
+[[gnu::always_inline]] inline void resolve_narrow_row(int y, int width, int x_lo, int x_hi, double* acc, float* cov,
+                                                      CoverageSink& sink) {
+  const int n = x_hi - x_lo + 1;
+  double sum = 0;
+  for (int i = 0; i < n; i += 4) {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+    if constexpr (kAvx2) {
+      sweep_short_run_avx2<R>(acc + x_lo + i, cov + i, std::min(4, n - i), sum);
+      continue;
+    }
+#endif
+    sweep_block_scalar<R>(acc + x_lo + i, cov + i, std::min(4, n - i), sum);
+  }
+  int a = 0, b = std::min(n, width - x_lo);
+  while (a < b && cov[a] == 0) ++a;
+  while (b > a && cov[b - 1] == 0) --b;
+  if (b - a == 1) {
+    sink.span(y, x_lo + a, x_lo + b, cov[a]);
+  } else if (b > a) {
+    sink.row(y, x_lo + a, x_lo + b, cov + a);
+  }
+  // Right of the cells the sum holds to the row's end (edges right of the image were dropped).
+  const float c = coverage_of<R>(sum);
+  if (c > 0 && x_hi + 1 < width) sink.span(y, x_hi + 1, width, c);
+}
+
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define VRASTER_CLONES __attribute__((target_clones("avx2", "default")))
 #else

@@ -37,6 +37,7 @@ constexpr std::size_t kCrowdedCellsPerEdge = 4;
 struct RowBuffers {
   std::vector<std::uint32_t>& active;
   std::vector<double>& active_x;
+  std::vector<int>& piece_cells;  // the first and last cell of each piece of the current row
   double* acc;
   std::uint64_t* bits;
   float* cov;
@@ -51,6 +52,7 @@ template <FillRule R, bool kAvx2>
   const int y_min = table.y_min;
   std::vector<std::uint32_t>& active = b.active;
   std::vector<double>& active_x = b.active_x;
+  std::vector<int>& piece_cells = b.piece_cells;
   double* const acc = b.acc;
   std::uint64_t* const bits = b.bits;
   float* const cov = b.cov;
@@ -69,6 +71,9 @@ template <FillRule R, bool kAvx2>
       active_x.push_back(edges[order[k]].x0);  // bucketed in its first row: it enters at its top
     }
     if (active.empty()) continue;
+    if (piece_cells.size() < 2 * active.size()) piece_cells.resize(4 * active.size());
+    int* const cells_of = piece_cells.data();
+    int pieces = 0;
     const double top = y, bottom = y + 1.0;
     int x_lo = width + 1, x_hi = 0;
     std::size_t kept = 0;
@@ -94,7 +99,9 @@ template <FillRule R, bool kAvx2>
       if (yb > ya) {
         accumulate_piece(acc, xa, xb, (yb - ya) * e.winding);
         const int c0 = static_cast<int>(std::min(xa, xb)), c1 = static_cast<int>(std::max(xa, xb)) + 1;
-        if (!crowded) mark_cells(bits, c0, c1);
+        cells_of[2 * pieces] = c0;  // marked touched after the row, unless it is narrow or crowded
+        cells_of[2 * pieces + 1] = c1;
+        ++pieces;
         x_lo = std::min(x_lo, c0);
         x_hi = std::max(x_hi, c1);
       }
@@ -103,7 +110,15 @@ template <FillRule R, bool kAvx2>
     active.erase(active.begin() + static_cast<std::ptrdiff_t>(kept), active.end());
     active_x.erase(active_x.begin() + static_cast<std::ptrdiff_t>(kept), active_x.end());
     if (x_lo <= x_hi) {
-      if (crowded) mark_cells(bits, x_lo, x_hi);
+      if (x_hi - x_lo < detail::kNarrowRowCells) {
+        detail::resolve_narrow_row<R, kAvx2>(y, width, x_lo, x_hi, acc, cov, sink);
+        continue;
+      }
+      if (crowded) {
+        mark_cells(bits, x_lo, x_hi);
+      } else {
+        for (int p = 0; p < pieces; ++p) mark_cells(bits, cells_of[2 * p], cells_of[2 * p + 1]);
+      }
       resolve_row<R, kAvx2>(y, width, x_lo, x_hi, acc, bits, cov, sink);
     }
   }
@@ -353,7 +368,8 @@ void detail::RasterizerImpl::sweep_analytic_band(const EdgeTableView& table, Fil
   if (s.coverage.size() < padded) s.coverage.resize(padded);
   // An edge whose bottom is at or above the band's top was retired before it (e.y1 > bottom keeps an edge).
   start_active(table, y_from, y_from, s.active);
-  const RowBuffers buffers{s.active, s.active_x, s.accumulation.data(), s.touched.data(), s.coverage.data()};
+  const RowBuffers buffers{s.active, s.active_x, s.piece_cells, s.accumulation.data(), s.touched.data(),
+                           s.coverage.data()};
   with_rule(rule, [&](auto r) {
     constexpr FillRule R = decltype(r)::value;
 #ifdef VRASTER_HAVE_AVX2_KERNELS
