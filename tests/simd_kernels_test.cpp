@@ -6,6 +6,7 @@
 // against the portable loops on every run length and alignment.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -150,6 +151,54 @@ TEST(SourceOverRuns, MatchTheRoundingRuleForEveryCase) {
     ++runs;
   }
   EXPECT_GT(runs, 250);
+}
+
+// The solid compositor (every Renderer::fill on an Image) against the rounding rule, for spans and rows of every
+// short length (its lone-pixel span and the kernels' masked ends) on a random background.
+TEST(SourceOverKernels, SolidCompositorFollowsTheRoundingRuleOnShortRuns) {
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<float> unit(0.f, 1.f);
+  for (int it = 0; it < 300; ++it) {
+    Image image(24, 1);
+    for (int x = 0; x < 24; ++x) {
+      std::uint8_t* p = image.pixel(x, 0);
+      p[3] = static_cast<std::uint8_t>(rng() % 256);
+      for (int c = 0; c < 3; ++c) p[c] = static_cast<std::uint8_t>(rng() % (p[3] + 1u));
+    }
+    const Image before = image;
+    const Color color{unit(rng), unit(rng), unit(rng), it % 5 == 0 ? 1.f : unit(rng)};
+    SolidCompositor<std::uint8_t> compositor(image, color);
+    const int x0 = static_cast<int>(rng() % 12), n = 1 + static_cast<int>(rng() % 12);
+    std::vector<float> cov(static_cast<std::size_t>(n));
+    for (float& c : cov) c = rng() % 4 == 0 ? 1.f : unit(rng);
+    const bool as_span = it % 2 == 0;
+    if (as_span) {
+      compositor.span(0, x0, x0 + n, cov[0]);
+    } else {
+      compositor.row(0, x0, x0 + n, cov.data());
+    }
+    // The premultiplied colour as docs/design.md rounds it: round(255 c a), in double.
+    auto level = [&](float c) {
+      return static_cast<std::uint32_t>(std::lround(static_cast<double>(c) * color.a * 255.0));
+    };
+    const std::uint32_t premul[4] = {level(color.r), level(color.g), level(color.b), level(1.f)};
+    for (int x = 0; x < 24; ++x) {
+      const std::uint8_t* d = before.pixel(x, 0);
+      const std::uint8_t* out = image.pixel(x, 0);
+      if (x < x0 || x >= x0 + n) {
+        ASSERT_EQ(std::memcmp(d, out, 4), 0) << "pixel " << x << " outside the run was written";
+        continue;
+      }
+      const float c = as_span ? cov[0] : cov[static_cast<std::size_t>(x - x0)];
+      const std::uint32_t k = static_cast<std::uint32_t>(c * 255.f + 0.5f);
+      std::uint8_t s[4];
+      for (int ch = 0; ch < 4; ++ch) s[ch] = div255(premul[ch] * k);
+      for (int ch = 0; ch < 4; ++ch) {
+        ASSERT_EQ(out[ch], static_cast<std::uint8_t>(s[ch] + div255(d[ch] * (255u - s[3]))))
+            << "iteration " << it << " pixel " << x << " channel " << ch;
+      }
+    }
+  }
 }
 
 TEST(SourceOverKernels, Avx2GivesThePortableBitsOnEveryLengthAndAlignment) {

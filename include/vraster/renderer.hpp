@@ -34,6 +34,7 @@ class SolidCompositor final : public CoverageSink {
   BasicImage<T>& image_;
   float alpha_;              // colour alpha in [0, 1]
   std::uint64_t premul_[4];  // colour premultiplied, scaled to the channel range
+  std::uint32_t packed8_ = 0;  // 8-bit targets: premul_ as one pixel (R in the low byte)
 };
 
 extern template class SolidCompositor<std::uint8_t>;

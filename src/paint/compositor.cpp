@@ -22,6 +22,9 @@ SolidCompositor<T>::SolidCompositor(BasicImage<T>& image, Color color) : image_(
   const double ch[3] = {color.r, color.g, color.b};
   for (int i = 0; i < 3; ++i) premul_[i] = static_cast<std::uint64_t>(std::lround(std::clamp(ch[i], 0.0, 1.0) * alpha_ * scale));
   premul_[3] = static_cast<std::uint64_t>(std::lround(alpha_ * scale));
+  if constexpr (sizeof(T) == 1) {
+    packed8_ = static_cast<std::uint32_t>(premul_[0] | premul_[1] << 8 | premul_[2] << 16 | premul_[3] << 24);
+  }
 }
 
 template <class T>
@@ -48,20 +51,25 @@ template <class T>
 void SolidCompositor<T>::span8(int y, int x0, int x1, float coverage) {
   const auto cov = static_cast<std::uint32_t>(coverage * 255.f + 0.5f);
   if (cov == 0 || premul_[3] == 0) return;
-  const std::uint32_t color = static_cast<std::uint32_t>(premul_[0] | premul_[1] << 8 | premul_[2] << 16 | premul_[3] << 24);
+  const std::uint32_t color = packed8_;
   auto* px = reinterpret_cast<std::uint32_t*>(static_cast<void*>(image_.pixel(x0, y)));
   const int n = x1 - x0;
   if (cov == 255 && premul_[3] == 255) {  // opaque: store, no blending
     detail::store8(px, n, color);
     return;
   }
-  detail::over8_constant(px, n, cov == 255 ? color : scale8(color, cov));
+  const std::uint32_t source = cov == 255 ? color : scale8(color, cov);
+  if (n == 1) {  // a lone edge pixel (thin shapes have many): over8_constant's arithmetic without its call
+    *px = detail::over8(source, *px);
+    return;
+  }
+  detail::over8_constant(px, n, source);
 }
 
 template <class T>
 void SolidCompositor<T>::row8(int y, int x0, int x1, const float* coverage) {
   if (premul_[3] == 0) return;
-  const std::uint32_t color = static_cast<std::uint32_t>(premul_[0] | premul_[1] << 8 | premul_[2] << 16 | premul_[3] << 24);
+  const std::uint32_t color = packed8_;
   auto* px = reinterpret_cast<std::uint32_t*>(static_cast<void*>(image_.pixel(x0, y)));
   detail::over8_solid(px, x1 - x0, coverage, 1.f, color);  // coverage in [0, 1]: quantize8 is round(255 c)
 }
