@@ -35,6 +35,9 @@ class SolidCompositor final : public CoverageSink {
   float alpha_;              // colour alpha in [0, 1]
   std::uint64_t premul_[4];  // colour premultiplied, scaled to the channel range
   std::uint32_t packed8_ = 0;  // 8-bit targets: premul_ as one pixel (R in the low byte)
+  // 8-bit targets: the source-over loops for this processor (AVX2 or portable), picked once.
+  void (*over_constant_)(std::uint32_t* px, int n, std::uint32_t s) = nullptr;
+  void (*over_solid_)(std::uint32_t* px, int n, const float* coverage, float scale, std::uint32_t c) = nullptr;
 };
 
 extern template class SolidCompositor<std::uint8_t>;

@@ -305,6 +305,11 @@ void over8_solid_avx2(std::uint32_t* px, int n, const float* coverage, float sca
 /// The two loops every fill ends in: the AVX2 kernel where the processor has it, else the portable loop.
 void over8_constant(std::uint32_t* px, int n, std::uint32_t s);
 void over8_solid(std::uint32_t* px, int n, const float* coverage, float scale, std::uint32_t c);
+/// The same choice made once, for callers that keep it (the solid compositor).
+using Over8ConstantFn = void (*)(std::uint32_t* px, int n, std::uint32_t s);
+using Over8SolidFn = void (*)(std::uint32_t* px, int n, const float* coverage, float scale, std::uint32_t c);
+Over8ConstantFn over8_constant_for_cpu();
+Over8SolidFn over8_solid_for_cpu();
 /// A row of colours scaled by one coverage k.
 void over8_row(std::uint32_t* px, const std::uint32_t* src, int n, std::uint32_t k);
 /// Colours (src_step 0: one colour) scaled by per-pixel coverage x scale, optionally lerped by a clip.

@@ -60,6 +60,20 @@ void over8_solid(std::uint32_t* px, int n, const float* coverage, float scale, s
   over8_solid_portable(px, n, coverage, scale, c);
 }
 
+Over8ConstantFn over8_constant_for_cpu() {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  if (cpu_has_avx2()) return &over8_constant_avx2;
+#endif
+  return &over8_constant_portable;
+}
+
+Over8SolidFn over8_solid_for_cpu() {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  if (cpu_has_avx2()) return &over8_solid_avx2;
+#endif
+  return &over8_solid_portable;
+}
+
 /// A row of colours scaled by one coverage k.
 VRASTER_PAINT_CLONES void over8_row(std::uint32_t* px, const std::uint32_t* src, int n, std::uint32_t k) {
   if (k == 255) {

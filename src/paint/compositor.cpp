@@ -24,6 +24,8 @@ SolidCompositor<T>::SolidCompositor(BasicImage<T>& image, Color color) : image_(
   premul_[3] = static_cast<std::uint64_t>(std::lround(alpha_ * scale));
   if constexpr (sizeof(T) == 1) {
     packed8_ = static_cast<std::uint32_t>(premul_[0] | premul_[1] << 8 | premul_[2] << 16 | premul_[3] << 24);
+    over_constant_ = detail::over8_constant_for_cpu();
+    over_solid_ = detail::over8_solid_for_cpu();
   }
 }
 
@@ -63,7 +65,7 @@ void SolidCompositor<T>::span8(int y, int x0, int x1, float coverage) {
     *px = detail::over8(source, *px);
     return;
   }
-  detail::over8_constant(px, n, source);
+  over_constant_(px, n, source);
 }
 
 template <class T>
@@ -71,7 +73,7 @@ void SolidCompositor<T>::row8(int y, int x0, int x1, const float* coverage) {
   if (premul_[3] == 0) return;
   const std::uint32_t color = packed8_;
   auto* px = reinterpret_cast<std::uint32_t*>(static_cast<void*>(image_.pixel(x0, y)));
-  detail::over8_solid(px, x1 - x0, coverage, 1.f, color);  // coverage in [0, 1]: quantize8 is round(255 c)
+  over_solid_(px, x1 - x0, coverage, 1.f, color);  // coverage in [0, 1]: quantize8 is round(255 c)
 }
 
 template <class T>
