@@ -26,10 +26,10 @@ using detail::mark_cells;
 using detail::resolve_row;
 using detail::with_rule;
 
-// The row loop, compiled for AVX2 and for any x86-64 (picked at load time); no FMA, so both give the same bits.
-// Sweeps rows [y_from, y_to) starting from `active` (start_active); every row's arithmetic is a function of the
-// edges and the row alone (x_at from each edge's own start, pieces added in active-list order), so a band gives the
-// bits a sweep of the whole range gives.
+// The row loop (instantiated for AVX2 and for any x86-64 below, picked per fill; no FMA, so both give the same
+// bits). Sweeps rows [y_from, y_to) starting from `active` (start_active); every row's arithmetic is a function of
+// the edges and the row alone (x_at from each edge's own start, pieces added in active-list order), so a band gives
+// the bits a sweep of the whole range gives.
 // A row with at least one active edge per this many pixels of the image's width is crowded (below).
 constexpr std::size_t kCrowdedCellsPerEdge = 4;
 
