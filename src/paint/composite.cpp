@@ -46,20 +46,6 @@ VRASTER_PAINT_CLONES void over8_solid_portable(std::uint32_t* px, int n, const f
   for (int i = 0; i < n; ++i) px[i] = over8(scale8(c, quantize8(coverage[i] * scale)), px[i]);
 }
 
-void over8_constant(std::uint32_t* px, int n, std::uint32_t s) {
-#ifdef VRASTER_HAVE_AVX2_KERNELS
-  if (cpu_has_avx2()) return over8_constant_avx2(px, n, s);
-#endif
-  over8_constant_portable(px, n, s);
-}
-
-void over8_solid(std::uint32_t* px, int n, const float* coverage, float scale, std::uint32_t c) {
-#ifdef VRASTER_HAVE_AVX2_KERNELS
-  if (cpu_has_avx2()) return over8_solid_avx2(px, n, coverage, scale, c);
-#endif
-  over8_solid_portable(px, n, coverage, scale, c);
-}
-
 Over8ConstantFn over8_constant_for_cpu() {
 #ifdef VRASTER_HAVE_AVX2_KERNELS
   if (cpu_has_avx2()) return &over8_constant_avx2;
@@ -72,6 +58,12 @@ Over8SolidFn over8_solid_for_cpu() {
   if (cpu_has_avx2()) return &over8_solid_avx2;
 #endif
   return &over8_solid_portable;
+}
+
+void over8_constant(std::uint32_t* px, int n, std::uint32_t s) { over8_constant_for_cpu()(px, n, s); }
+
+void over8_solid(std::uint32_t* px, int n, const float* coverage, float scale, std::uint32_t c) {
+  over8_solid_for_cpu()(px, n, coverage, scale, c);
 }
 
 /// A row of colours scaled by one coverage k.
