@@ -12,6 +12,7 @@
 #include <random>
 
 #include "paint/blend.hpp"
+#include "raster/cells.hpp"
 #include "raster/cpu.hpp"
 #include "support/capture.hpp"
 #include "vraster/renderer.hpp"
@@ -239,6 +240,44 @@ TEST(SourceOverKernels, Avx2GivesThePortableBitsOnEveryLengthAndAlignment) {
 #else
   GTEST_SKIP() << "no AVX2 kernels in this build";
 #endif
+}
+
+// accumulate_piece has two ways to split a piece into cells: with branches on how many cells it crosses, and (for
+// up to three cells) choosing the numbers without branches. They must add the same numbers to every cell in the
+// same order. Only the sign of a zero may differ (x + 0 where the other way adds nothing), which no sum sees, so
+// cells are compared as numbers. Pieces start and end on cell sides and inside cells, have zero width, and cross up
+// to seven cells; several pieces go into the same cells, as the pieces of one row do.
+TEST(AccumulatePiece, ChoosingWithoutBranchesAddsTheSameNumbers) {
+  std::mt19937 rng(2026);
+  std::uniform_real_distribution<double> unit(0, 1);
+  constexpr int kCells = 48;
+  int shapes[4] = {0, 0, 0, 0};  // pieces inside one, two, three, more cells
+  for (int row = 0; row < 3000; ++row) {
+    double branches[kCells + detail::kPieceSlack] = {}, chosen[kCells + detail::kPieceSlack] = {};
+    const int pieces = 1 + static_cast<int>(rng() % 6);
+    for (int p = 0; p < pieces; ++p) {
+      auto x = [&] {
+        const double base = static_cast<double>(rng() % 40);
+        switch (rng() % 4) {
+          case 0: return base;                       // on a cell side
+          case 1: return base + 1 - 0x1p-40;         // just left of the next side
+          default: return base + unit(rng);
+        }
+      };
+      const double xa = x();
+      const double span = rng() % 5 == 0 ? 0.0 : unit(rng) * static_cast<double>(1 + rng() % 7);
+      const double xb = rng() % 2 ? std::min(xa + span, 44.0) : std::max(xa - span, 0.0);
+      const double h = (unit(rng) * 2 - 1) * (rng() % 3 == 0 ? 1.0 : unit(rng));
+      const int crossed = static_cast<int>(std::max(xa, xb)) - static_cast<int>(std::min(xa, xb));
+      ++shapes[std::min(crossed, 3)];
+      detail::accumulate_piece<false>(branches, xa, xb, h);
+      detail::accumulate_piece<true>(chosen, xa, xb, h);
+    }
+    for (int i = 0; i < kCells + detail::kPieceSlack; ++i) {
+      ASSERT_EQ(branches[i], chosen[i]) << "row " << row << " cell " << i;
+    }
+  }
+  for (int count : shapes) EXPECT_GT(count, 500);
 }
 
 }  // namespace
