@@ -340,7 +340,14 @@ template <FillRule R, bool kAvx2 = false>
         sweep_block_scalar<R>(acc + t, cov + (t - run), e - t, sum);
       }
     } else {
-      sweep_cells<R>(acc + t, cov + (t - run), e - t, sum);
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+      if constexpr (kAvx2) {
+        sweep_cells_avx2<R>(acc + t, cov + (t - run), e - t, sum);  // chosen already: no test per run
+      } else
+#endif
+      {
+        sweep_cells<R>(acc + t, cov + (t - run), e - t, sum);
+      }
     }
     x = e;
   }
