@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -104,6 +105,33 @@ TEST(MaskFill, MatchesTheRowSweepForPathsReachingOutsideTheMask) {
     const Polylines lines = flattened(random_polygon(rng, -12, 45));
     for (FillRule rule : kRules) {
       ASSERT_LE(max_difference(r, lines, rule, w, h), 1) << "iteration " << it << " rule " << to_string(rule);
+    }
+  }
+}
+
+TEST(MaskFill, ContoursWithAnInfiniteOrNaNPointAreLeftOutAsTheRowSweepLeavesThem) {
+  // The bounds pass must notice a bad point wherever it sits in the list (even or odd place, last), or the mask
+  // path would walk it. A square contour stays and is drawn; the contour holding the bad point is dropped.
+  const double bad_values[] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                               -std::numeric_limits<double>::infinity()};
+  Rasterizer r;
+  for (const double bad : bad_values) {
+    for (int place = 0; place < 5; ++place) {
+      for (const bool in_x : {true, false}) {
+        Polylines lines;
+        lines.points = {{1.5, 1.5}, {6.5, 1.5}, {6.5, 6.5}, {1.5, 6.5}};  // the square
+        lines.ends.push_back(4);
+        lines.closed.push_back(1);
+        std::vector<Point> other = {{2, 2}, {7, 3}, {5, 7}, {3, 6}, {2, 5}};
+        (in_x ? other[static_cast<std::size_t>(place)].x : other[static_cast<std::size_t>(place)].y) = bad;
+        lines.points.insert(lines.points.end(), other.begin(), other.end());
+        lines.ends.push_back(static_cast<std::uint32_t>(lines.points.size()));
+        lines.closed.push_back(1);
+        const auto mask = mask_bytes(r, lines, FillRule::NonZero, 8, 8);
+        EXPECT_EQ(mask[4 * 8 + 4], 255) << "place " << place;  // inside the square
+        EXPECT_EQ(mask[0], 0) << "place " << place;
+        EXPECT_LE(max_difference(r, lines, FillRule::NonZero, 8, 8), 1) << "place " << place;
+      }
     }
   }
 }
