@@ -13,11 +13,13 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <random>
 #include <vector>
 
 #include "support/paint_reference.hpp"
 #include "vraster/composite.hpp"
+#include "vraster/renderer.hpp"
 
 namespace vraster {
 namespace {
@@ -620,6 +622,30 @@ TEST(Paint, OpaqueAndInvisible) {
   conic.set_transform(Affine::scale(0, 1));
   EXPECT_TRUE(conic.is_invisible());
   EXPECT_TRUE(Paint::pattern(std::shared_ptr<const Image>()).is_invisible());
+}
+
+// CoverageSink::expect is a hint before a small fill (the sinks that write pixels start fetching them): it must change
+// no pixel, whatever box it is given, including boxes beyond the image or the view and at the ends of int.
+TEST(CompositorExpect, IsOnlyAHintForEveryBox) {
+  std::mt19937 rng(11);
+  Image image(37, 29);
+  for (auto& v : image.data) v = static_cast<std::uint8_t>(rng());
+  const Image before = image;
+  const int big = std::numeric_limits<int>::max(), small = std::numeric_limits<int>::min();
+  const int boxes[][4] = {{0, 29, 0, 37},   {-5, 40, -9, 50},   {28, 29, 36, 37}, {5, 5, 3, 20},   {10, 2, 8, 4},
+                          {small, big, small, big}, {big - 1, big, big - 1, big}, {small, small + 1, small, small + 1},
+                          {29, 100, 0, 37}, {0, 29, 37, 100}, {0, 200, 0, 200}};
+  Compositor<std::uint8_t> general;
+  ImageView<std::uint8_t> view = ImageView<std::uint8_t>::of(image);
+  view.x0 = -3;  // a view placed off the origin, as a layer is
+  view.y0 = 4;
+  general.set(view, Paint::solid({0.2f, 0.4f, 0.6f, 0.8f}), Affine{}, CompositeOp::SourceOver);
+  SolidCompositor<std::uint8_t> solid(image, Color{0.2f, 0.4f, 0.6f, 0.8f});
+  for (const auto& b : boxes) {
+    general.expect(b[0], b[1], b[2], b[3]);
+    solid.expect(b[0], b[1], b[2], b[3]);
+  }
+  EXPECT_EQ(image.data, before.data);
 }
 
 }  // namespace

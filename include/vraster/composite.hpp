@@ -87,6 +87,7 @@ class Compositor final : public CoverageSink {
   /// target's pixels, so rows may come from several threads. (Gradients and patterns shade into a buffer kept in
   /// the compositor: their calls stay on one thread.)
   bool takes_concurrent_rows() const override;
+  void expect(int y0, int y1, int x0, int x1) override;
 
   /// True when nothing the current draw call could do changes a pixel (invisible paint or zero alpha with a
   /// bounded operator): callers skip rasterization altogether.

@@ -80,6 +80,10 @@ class CoverageSink {
   /// A copy of this sink that can be kept and called later (Rasterizer::fill_queued keeps one for each fill it
   /// queues), or null (the default) for a sink that cannot be copied so: fills into it are drawn at once.
   virtual std::unique_ptr<CoverageSink> clone() const { return nullptr; }
+  /// A hint before the calls of one small fill: they stay in rows [y0, y1) and columns [x0, x1). A sink that writes
+  /// pixels may start fetching them into the cache while the rasterizer accumulates the fill (the default ignores
+  /// it). Only a hint: it changes no result.
+  virtual void expect(int /*y0*/, int /*y1*/, int /*x0*/, int /*x1*/) {}
 };
 
 /// A device-space line segment, stored top to bottom (y0 < y1), with the direction of the original segment.

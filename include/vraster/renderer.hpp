@@ -23,6 +23,7 @@ class SolidCompositor final : public CoverageSink {
   void row(int y, int x0, int x1, const float* coverage) override;
   /// Rows are independent pixels and nothing changes between calls.
   bool takes_concurrent_rows() const override { return true; }
+  void expect(int y0, int y1, int x0, int x1) override;
   /// A copy drawing the same colour onto the same image.
   std::unique_ptr<CoverageSink> clone() const override { return std::make_unique<SolidCompositor>(*this); }
 

@@ -57,6 +57,10 @@ class ClipSink final : public CoverageSink {
                  [&](int a, int b, const T* clip) { out_.row(dy, a, b, coverage + (a - dx0), clip); });
   }
 
+  void expect(int y0, int y1, int x0, int x1) override {
+    out_.expect(y0 + region_.y0, y1 + region_.y0, x0 + region_.x0, x1 + region_.x0);
+  }
+
   /// Bounded operators read only the clip mask, so rows are independent when the compositor's are; unbounded ones
   /// collect each row and flush the rows in between, which needs them in order.
   bool takes_concurrent_rows() const override { return !unbounded_ && out_.takes_concurrent_rows(); }

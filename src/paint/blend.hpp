@@ -383,4 +383,25 @@ using CompositeRunFn = void (*)(T*, const T*, int, const float*, float, const T*
 template <class T>
 CompositeRunFn<T> composite_run_for(CompositeOp op);
 
+// CoverageSink::expect for sinks that write `view`: small fills land anywhere on a large image, whose rows are
+// mostly out of the nearer caches, so the fill's pixels are requested while the rasterizer works out the coverage
+// instead of being waited for row by row as they are blended. Up to kExpectRows rows of kExpectLines cache lines
+// (a small fill's box; a large fill's rows come in as it goes). The box is clipped to the view.
+template <class T>
+void prefetch_pixels(const ImageView<T>& view, int y0, int y1, int x0, int x1) {
+  constexpr int kExpectRows = 64, kExpectLines = 4;
+  constexpr int kPixelsPerLine = 64 / (4 * static_cast<int>(sizeof(T)));
+  y0 = std::max(y0, view.y0);
+  y1 = std::min(y1, view.y0 + view.height);
+  x0 = std::max(x0, view.x0);
+  x1 = std::min(x1, view.x0 + view.width);
+  if (y1 <= y0 || x1 <= x0) return;
+  y1 = std::min(y1, y0 + kExpectRows);  // y0 < y1 inside the view: no overflow
+  const int last = std::min(x1 - 1, x0 + kExpectLines * kPixelsPerLine - 1);
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x <= last; x += kPixelsPerLine) __builtin_prefetch(view.pixel(x, y), 1);
+    __builtin_prefetch(view.pixel(last, y), 1);  // the line of the last pixel, which the steps may skip
+  }
+}
+
 }  // namespace vraster::detail

@@ -204,6 +204,11 @@ void Compositor<T>::set(ImageView<T> target, const Paint& paint, const Affine& u
 }
 
 template <class T>
+void Compositor<T>::expect(int y0, int y1, int x0, int x1) {
+  if (!state_->nothing) detail::prefetch_pixels(state_->view, y0, y1, x0, x1);
+}
+
+template <class T>
 bool Compositor<T>::takes_concurrent_rows() const {
   return state_->shader.is_constant();
 }

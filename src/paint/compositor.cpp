@@ -30,6 +30,11 @@ SolidCompositor<T>::SolidCompositor(BasicImage<T>& image, Color color) : image_(
 }
 
 template <class T>
+void SolidCompositor<T>::expect(int y0, int y1, int x0, int x1) {
+  detail::prefetch_pixels(ImageView<T>::of(image_), y0, y1, x0, x1);
+}
+
+template <class T>
 void SolidCompositor<T>::span(int y, int x0, int x1, float coverage) {
   if constexpr (sizeof(T) == 1) {
     span8(y, x0, x1, coverage);

@@ -167,6 +167,7 @@ constexpr int kTrimmedDenseColumns = 24;
 template <FillRule R, bool kTrimmed>
 VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns,
                                      int width, double* block, int* extent, float* cov, CoverageSink& sink) {
+  sink.expect(y_min, y_max, x_base, x_base + columns);
   const double shift = x_base;
   if constexpr (kTrimmed) {
     for (int r = 0; r < y_max - y_min; ++r) {

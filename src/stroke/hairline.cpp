@@ -115,6 +115,7 @@ class ScaledSink final : public CoverageSink {
     for (float& c : buf_) c *= scale_;
     out_.row(y, x0, x1, buf_.data());
   }
+  void expect(int y0, int y1, int x0, int x1) override { out_.expect(y0, y1, x0, x1); }
 
  private:
   CoverageSink& out_;
