@@ -192,6 +192,7 @@ bool detail::RasterizerImpl::fill_rect(const Polylines& lines, FillRule rule, An
 
   // Rows strictly inside [yt, yb) all look alike; at most the first and the last differ.
   const int y0 = static_cast<int>(yt), y1 = static_cast<int>(std::ceil(yb));
+  sink.expect(y0, y1, px0, px1);  // the rows' pixels come in together instead of one row after another
   RowPlan plans[3];
   bool made[3] = {false, false, false};
   for (int y = y0; y < y1; ++y) {
