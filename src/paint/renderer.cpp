@@ -53,6 +53,7 @@ void Renderer::mask(const std::uint8_t* mask, int mask_width, int mask_height, s
   const std::int64_t x0 = std::max<std::int64_t>(x, 0), x1 = std::min<std::int64_t>(std::int64_t{x} + mask_width, width);
   const std::int64_t y0 = std::max<std::int64_t>(y, 0), y1 = std::min<std::int64_t>(std::int64_t{y} + mask_height, height);
   if (x1 <= x0 || y1 <= y0) return;
+  sink.expect(static_cast<int>(y0), static_cast<int>(y1), static_cast<int>(x0), static_cast<int>(x1));
   std::vector<float>& row = scratch_->row;
   if (row.size() < static_cast<std::size_t>(x1 - x0)) row.resize(static_cast<std::size_t>(x1 - x0));
   for (std::int64_t py = y0; py < y1; ++py) {
