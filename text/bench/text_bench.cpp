@@ -1,6 +1,7 @@
 // Text benchmark: glyphs per second, vraster (outline -> coverage, uncached and cached) against FreeType's
 // FT_Render_Glyph in the same run, at 12, 16, 32 and 64 px; and shaping + layout + rendering of a 10,000-character
-// paragraph. A program, not a test: build with -DVRASTER_BUILD_TEXT_BENCH=ON (or VRASTER_BUILD_BENCH) in Release.
+// paragraph (also drawn by Blend2D when built with -DVRASTER_BENCH_BLEND2D_ROOT=PREFIX, from the same glyphs and
+// positions). A program, not a test: build with -DVRASTER_BUILD_TEXT_BENCH=ON (or VRASTER_BUILD_BENCH) in Release.
 //
 //   text_bench [seconds-per-measurement]
 #include <ft2build.h>
@@ -12,6 +13,10 @@
 #include <cstdlib>
 #include <string>
 #include <vector>
+
+#ifdef VRASTER_BENCH_WITH_BLEND2D
+#include <blend2d/blend2d.h>
+#endif
 
 #include "font_impl.hpp"
 #include "vraster/image.hpp"
@@ -179,6 +184,45 @@ int main(int argc, char** argv) {
   std::printf("  render, warm glyph cache  %8.2f ms\n", warm_ms);
   std::printf("  render, from outlines     %8.2f ms\n", outline_ms);
   std::printf("  total (layout + cold)     %8.2f ms\n", layout_ms + cold_ms);
+#ifdef VRASTER_BENCH_WITH_BLEND2D
+  {
+    // Blend2D draws the same glyphs at the same positions (one glyph run, absolute positions), from their outlines
+    // every time (it keeps no glyph bitmaps), onto an image of the same size; timed as the warm-cache loop above.
+    BLFontData font_data;
+    BLFontFace face_b;
+    BLFont font_b;
+    if (font_data.create_from_data(data.data(), data.size()) != BL_SUCCESS || face_b.create_from_data(font_data, 0) != BL_SUCCESS ||
+        font_b.create_from_face(face_b, static_cast<float>(style.size)) != BL_SUCCESS) {
+      std::fprintf(stderr, "Blend2D cannot load the font\n");
+      return 1;
+    }
+    std::vector<std::uint32_t> ids;
+    std::vector<BLPoint> at;
+    for (const PositionedGlyph& g : layout.glyphs) {
+      ids.push_back(g.glyph);
+      at.push_back(BLPoint(g.position.x, g.position.y));
+    }
+    BLGlyphRun run{};
+    run.set_glyph_data(ids.data());
+    run.set_placement_data(at.data());
+    run.size = ids.size();
+    run.placement_type = BL_GLYPH_PLACEMENT_TYPE_USER_UNITS;
+    BLImage b_page(page.width, page.height, BL_FORMAT_PRGB32);
+    BLContext ctx(b_page);
+    ctx.fill_all(BLRgba32(0xFFFFFFFFu));
+    ctx.set_fill_style(BLRgba32(0xFF000000u));
+    ctx.fill_glyph_run(BLPoint(0, 0), font_b, run);  // warm-up
+    int b_reps = 0;
+    const auto t4 = Clock::now();
+    do {
+      ctx.fill_glyph_run(BLPoint(0, 0), font_b, run);
+      ++b_reps;
+    } while (std::chrono::duration<double>(Clock::now() - t4).count() < g_seconds);
+    const double blend2d_ms = std::chrono::duration<double, std::milli>(Clock::now() - t4).count() / b_reps;
+    ctx.end();
+    std::printf("  Blend2D, same glyphs      %8.2f ms   (warm cache / Blend2D: %.2f)\n", blend2d_ms, warm_ms / blend2d_ms);
+  }
+#endif
   FT_Done_Face(face);
   FT_Done_FreeType(lib);
   std::printf("(checksum %llu)\n", static_cast<unsigned long long>(g_sink));
