@@ -53,6 +53,11 @@ void edge_columns(const std::vector<Edge>& edges, int& x_base, int& columns);
 /// Whether `edges` (rows [y_min, y_max), `columns` columns) take the dense sweep: small paths, a few thousand cells.
 bool fits_dense(const std::vector<Edge>& edges, int y_min, int y_max, int columns, std::int64_t dense_limit);
 
+/// Crossings of `edges` (clipped to rows [0, height)) inside pixel rows: per row, the pairs of edges whose x order
+/// at the row's top (ties by x at the bottom) differs from their order at its bottom. Counting stops once it
+/// passes `limit` (the result is then some number above it). exact_budget.cpp.
+std::uint64_t row_crossings(const std::vector<Edge>& edges, int height, std::uint64_t limit);
+
 /// Coverage calls kept for later (a queued rectangle: cheaper computed at once than kept as edges), replayed row
 /// range by row range. Calls are kept in the order they came, which is increasing y.
 class CoverageRecording final : public CoverageSink {
@@ -196,7 +201,6 @@ class RasterizerImpl {
   void build_queued(QueuedFill& q, BandScratch& s) const;
 
   std::vector<std::int64_t> budget_rows_;    // exact budget: active-edge count changes per row
-  std::vector<std::uint32_t> budget_order_;  // exact budget: edges by top
   std::vector<Edge> horizontals_;            // NonExterior: horizontal segments (they matter for connectivity)
   std::vector<Edge> pieces_;                 // boundary pieces from the boundary sweep
   int y_min_ = 0, y_max_ = 0;               // rows touched by edges_, [y_min_, y_max_)
