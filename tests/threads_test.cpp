@@ -392,6 +392,39 @@ TEST(Threads, QueuedFillsWithNonFiniteOrOffImagePointsDrawAsAlone) {
   EXPECT_TRUE(queued[4].rows.empty());
 }
 
+// The fill that starts a queue keeps the edges fill_queued built to weigh it (flush() does not build them again):
+// one inside the image, one partly outside it (clipped), one with a contour that has a NaN point (left out). Each
+// is queued, not drawn at once, and gives the calls of drawing it alone; a small fill queued after it does too.
+TEST(Threads, TheFillThatStartsTheQueueKeepsItsBuiltEdges) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Polylines inside, clipped, with_nan, small;
+  flatten(big_triangle(), Affine{}, FlattenOptions{}, inside);
+  flatten(big_triangle(), Affine::translate(-120, 90), FlattenOptions{}, clipped);
+  with_nan = inside;
+  with_nan.points.insert(with_nan.points.end(), {{30, 30}, {nan, 60}, {90, 40}});
+  with_nan.ends.push_back(static_cast<std::uint32_t>(with_nan.points.size()));
+  with_nan.closed.push_back(1);
+  flatten(big_triangle(), Affine::translate(100, 100) * Affine::scale(0.02, 0.02), FlattenOptions{}, small);
+  for (const Polylines* first : {&inside, &clipped, &with_nan}) {
+    CallRecorder alone_first, alone_small, queued_first, queued_small;
+    Rasterizer one, many;
+    many.set_threads(2);
+    one.fill(*first, FillRule::EvenOdd, AntiAlias::Analytic, kSide, kSide, alone_first);
+    one.fill(small, FillRule::EvenOdd, AntiAlias::Analytic, kSide, kSide, alone_small);
+    many.fill_queued(*first, FillRule::EvenOdd, AntiAlias::Analytic, kSide, kSide,
+                     std::make_unique<Forward>(queued_first));
+    many.fill_queued(small, FillRule::EvenOdd, AntiAlias::Analytic, kSide, kSide,
+                     std::make_unique<Forward>(queued_small));
+    EXPECT_EQ(many.queued_fills(), 2u);
+    EXPECT_TRUE(queued_first.rows.empty());  // nothing drawn before flush()
+    many.flush();
+    EXPECT_FALSE(alone_first.rows.empty());
+    EXPECT_FALSE(alone_small.rows.empty());
+    EXPECT_TRUE(alone_first.rows == queued_first.rows);
+    EXPECT_TRUE(alone_small.rows == queued_small.rows);
+  }
+}
+
 // Calls that do not queue (a borrowed sink, hairlines, a mask, a gradient compositor, exact coverage) run after
 // what is queued: the painter's order holds, 8 and 16 bits, with paint compositors handed to the queue too.
 template <class T>

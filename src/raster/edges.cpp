@@ -81,8 +81,9 @@ void detail::add_clipped_segment(std::vector<Edge>& edges, Point p, Point q, int
 }
 
 void detail::build_edges(const Polylines& lines, int width, int height, std::vector<Edge>& edges, int& y_min,
-                         int& y_max) {
+                         int& y_max, double* work) {
   edges.clear();
+  if (work) *work = 0;
   if (lines.points.empty()) {
     y_min = y_max = 0;
     return;
@@ -100,10 +101,11 @@ void detail::build_edges(const Polylines& lines, int width, int height, std::vec
   if (!finite) {  // the contours without a NaN or infinite point, clipped (the bounds above are not theirs)
     for_each_finite_segment(lines, [&](Point p, Point q) { add_clipped_segment(edges, p, q, width, height); });
     row_range(edges, height, y_min, y_max);
+    if (work) *work = band_work(edges);
     return;
   }
   const bool inside = x_lo >= 0 && y_lo >= 0 && x_hi <= width && y_hi <= height;
-  lines.for_each_segment([&](Point p, Point q) {
+  auto add = [&](Point p, Point q) {
     if (!inside) {
       add_clipped_segment(edges, p, q, width, height);
     } else if (q.y > p.y) {
@@ -111,7 +113,20 @@ void detail::build_edges(const Polylines& lines, int width, int height, std::vec
     } else if (q.y < p.y) {
       edges.push_back({q.x, q.y, p.x, p.y, (p.x - q.x) / (p.y - q.y), -1});
     }
-  });
+  };
+  if (work && inside) {
+    // band_work's sums over the segments as they go by (the same edges, nothing clipped): no second pass.
+    double outline = 0, signed_area = 0;
+    lines.for_each_segment([&](Point p, Point q) {
+      outline += std::abs(q.y - p.y) + std::abs(q.x - p.x);
+      signed_area += 0.5 * (p.x + q.x) * (q.y - p.y);
+      add(p, q);
+    });
+    *work = work_of(outline, signed_area);
+  } else {
+    lines.for_each_segment(add);
+    if (work) *work = band_work(edges);
+  }
   if (inside) {
     y_min = std::max(static_cast<int>(std::floor(y_lo)), 0);
     y_max = std::min(static_cast<int>(std::ceil(y_hi)), height);

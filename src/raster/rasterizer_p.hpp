@@ -32,8 +32,10 @@ struct BucketScratch {
 // on several threads at once, each into its own vectors.
 
 /// Polylines -> edges clipped to [0, width] x [0, height] (top to bottom, with winding), and the rows
-/// [y_min, y_max) they touch.
-void build_edges(const Polylines& lines, int width, int height, std::vector<Edge>& edges, int& y_min, int& y_max);
+/// [y_min, y_max) they touch. With `work`: also band_work's estimate of the fill (sweep.cpp), taken as the
+/// segments go by where nothing is clipped (the fill queue's choice between drawing a fill now and queuing it).
+void build_edges(const Polylines& lines, int width, int height, std::vector<Edge>& edges, int& y_min, int& y_max,
+                 double* work = nullptr);
 /// Segment p -> q clipped as build_edges clips it, appended to `edges`.
 void add_clipped_segment(std::vector<Edge>& edges, Point p, Point q, int width, int height);
 /// The rows [y_min, y_max) that clipped `edges` touch.
@@ -46,8 +48,11 @@ void bucket_edges(const std::vector<Edge>& edges, int y_min, int y_max, bool by_
 
 /// The edges' summed height and width: about the number of cells they touch.
 double outline_cells(const std::vector<Edge>& edges);
-/// The work estimate behind banding (units of about 10 ns).
+/// The work estimate behind banding (units of about 10 ns): the edges' height and width (the sweep) and the area
+/// inside (compositing, kAreaPerUnit pixels a unit).
 double band_work(const std::vector<Edge>& edges);
+/// band_work from its two sums: outline (summed |dy| + |dx|) and signed area.
+double work_of(double outline, double signed_area);
 /// The cells [x_base, x_base + columns) that (non-empty) `edges` can write.
 void edge_columns(const std::vector<Edge>& edges, int& x_base, int& columns);
 /// Whether `edges` (rows [y_min, y_max), `columns` columns) take the dense sweep: small paths, a few thousand cells.
@@ -91,11 +96,12 @@ class CoverageRecording final : public CoverageSink {
 /// rasterizer's own buffers are free for the next fill. Entries are reused from flush to flush (their vectors keep
 /// their capacity).
 struct QueuedFill {
-  // Unbuilt: only `lines` so far; flush() builds the edges (on the pool's threads) and picks one of the kinds after
-  // it (Empty: no edge inside the image).
+  // Unbuilt: only `lines` so far (or, with `prebuilt`, the edges already); flush() builds the edges (on the pool's
+  // threads) and picks one of the kinds after it (Empty: no edge inside the image).
   enum class Kind : std::uint8_t { Unbuilt, Empty, Analytic, Aliased, Sampled, Dense, Recorded };
   Kind kind = Kind::Analytic;
   Polylines lines;  // Unbuilt: the fill's outline, as fill_queued got it
+  bool prebuilt = false;  // Unbuilt: edges, y_min and y_max are built already (the fill that started the queue)
   int x_base = 0, columns = 0;  // Dense: the cells the edges reach (edge_columns)
   FillRule rule = FillRule::NonZero;
   AntiAlias aa = AntiAlias::Analytic;

@@ -312,10 +312,14 @@ double detail::outline_cells(const std::vector<Edge>& edges) {
   return outline;
 }
 
+double detail::work_of(double outline, double signed_area) {
+  return outline + std::abs(signed_area) / kAreaPerUnit;
+}
+
 double detail::band_work(const std::vector<Edge>& edges) {
   double signed_area = 0;
   for (const Edge& e : edges) signed_area += 0.5 * (e.x0 + e.x1) * (e.y1 - e.y0) * e.winding;
-  return outline_cells(edges) + std::abs(signed_area) / kAreaPerUnit;
+  return work_of(outline_cells(edges), signed_area);
 }
 
 int detail::RasterizerImpl::band_count(const CoverageSink& sink) const {
