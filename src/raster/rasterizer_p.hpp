@@ -3,6 +3,7 @@
 // here, allocated once per Rasterizer and reused, so steady-state fills allocate nothing.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -21,6 +22,47 @@ struct EdgeTableView {
   const std::vector<std::uint32_t>& order;
   const std::vector<std::uint32_t>& bucket_start;
   int y_min, y_max;
+};
+
+/// The analytic row sweep's active edges as columns, one array per number, in active-list order: every row reads
+/// them for every edge, so they lie contiguous and four edges go at once (sweep.cpp). Columns hold kPadding entries
+/// past `size` for the last step of four.
+struct ActiveEdges {
+  static constexpr std::size_t kPadding = 3;
+  // The edge: its top, slope, bottom and winding.
+  std::vector<double> x0, y0, dxdy, y1, x1, winding;
+  std::vector<double> x;   // where the edge enters the current row
+  std::vector<double> xb;  // the current row: where it leaves the row
+  std::vector<double> h;   // the current row: the piece's height times the winding (0: no piece)
+  std::size_t size = 0;
+
+  void clear() { size = 0; }
+  /// Room for n edges (and the padding) in every column.
+  void reserve(std::size_t n) {
+    if (x.size() >= n + kPadding) return;
+    const std::size_t room = std::max<std::size_t>(2 * x.size(), n + kPadding);
+    for (std::vector<double>* c : {&x0, &y0, &dxdy, &y1, &x1, &winding, &x, &xb, &h}) c->resize(room);
+  }
+  /// Appends edge e entering the current row at x_enter (call reserve first).
+  void push(const Edge& e, double x_enter) {
+    const std::size_t k = size++;
+    x0[k] = e.x0;
+    y0[k] = e.y0;
+    dxdy[k] = e.dxdy;
+    y1[k] = e.y1;
+    x1[k] = e.x1;
+    winding[k] = e.winding;
+    x[k] = x_enter;
+  }
+  /// Edge `from` moves to slot `to` <= from (the list shrinks in place, keeping its order).
+  void move(std::size_t from, std::size_t to) {
+    x0[to] = x0[from];
+    y0[to] = y0[from];
+    dxdy[to] = dxdy[from];
+    y1[to] = y1[from];
+    x1[to] = x1[from];
+    winding[to] = winding[from];
+  }
 };
 
 /// Scratch of bucket_edges (a counting sort), kept between calls so that it allocates nothing in steady state.
@@ -168,7 +210,7 @@ class RasterizerImpl {
   // of its own: the sweeps write their vectors' sizes every row, and two threads must not share those lines.
   struct alignas(64) BandScratch {
     std::vector<std::uint32_t> active;    // the active edge list (indices into edges_)
-    std::vector<double> active_x;         // analytic sweep: where each active edge enters the current row
+    ActiveEdges columns;                  // analytic sweep: the active edges as columns
     std::vector<Crossing> crossings;      // aliased sweep: active edges with their x at the sample row
     std::vector<double> accumulation;     // analytic sweep: one row of signed area deltas, width + 2 cells
     std::vector<std::uint64_t> touched;   // analytic sweep: one bit per cell written in the current row

@@ -29,14 +29,17 @@ using detail::with_rule;
 // The row loop (instantiated for AVX2 and for any x86-64 below, picked per fill; no FMA, so both give the same
 // bits). Sweeps rows [y_from, y_to) starting from `active` (start_active); every row's arithmetic is a function of
 // the edges and the row alone (x_at from each edge's own start, pieces added in active-list order), so a band gives
-// the bits a sweep of the whole range gives.
+// the bits a sweep of the whole range gives. Per row: where every active edge leaves the row, four edges at once
+// from the active edges kept as columns (leave_row; a branch per edge on whether it ends in the row was
+// mispredicted often enough to cost stars a quarter of their time), then the pieces one by one, then the edges that
+// end are dropped.
 // A row with at least one active edge per this many pixels of the image's width is crowded (below).
 constexpr std::size_t kCrowdedCellsPerEdge = 4;
 
 // A band's row buffers (BandScratch's, sized for the row with kRowPadding).
 struct RowBuffers {
-  std::vector<std::uint32_t>& active;
-  std::vector<double>& active_x;
+  const std::vector<std::uint32_t>& active;  // the active list at the band's top (start_active)
+  detail::ActiveEdges& columns;
   std::vector<int>& piece_cells;  // the first and last cell of each piece of the current row
   double* acc;
   std::uint64_t* bits;
@@ -56,6 +59,59 @@ bool short_edges(const std::vector<Edge>& edges) {
   return rows < kLongEdgeRows * static_cast<double>(n);
 }
 
+// Where active edges [k, size) leave the row [top, bottom), and the signed height of their pieces there (0: none),
+// into columns xb and h: Edge::x_at(bottom) for an edge that goes on below the row (its end x1 otherwise), and
+// (min(y1, bottom) - max(y0, top)) * winding. Returns whether every one of them goes on below the row.
+[[gnu::always_inline]] inline bool leave_row(detail::ActiveEdges& a, std::size_t k, double top, double bottom) {
+  bool all_go_on = true;
+  for (; k < a.size; ++k) {
+    const double ya = std::max(a.y0[k], top);
+    double yb, xb;
+    if (a.y1[k] > bottom) {
+      yb = bottom;
+      // Edge::x_at(bottom), step by step.
+      const double x0 = a.x0[k], x1 = a.x1[k];
+      const double x = x0 + (bottom - a.y0[k]) * a.dxdy[k];
+      const double lo = x1 < x0 ? x1 : x0, hi = x0 < x1 ? x1 : x0;
+      const double above_lo = lo < x ? x : lo;
+      xb = hi < above_lo ? hi : above_lo;
+    } else {
+      yb = a.y1[k];
+      xb = a.x1[k];
+      all_go_on = false;
+    }
+    a.xb[k] = xb;
+    a.h[k] = yb > ya ? (yb - ya) * a.winding[k] : 0.0;
+  }
+  return all_go_on;
+}
+
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+// leave_row four edges a step, with the same operations (maxpd / minpd give the ternaries' values on these
+// non-NaN numbers, and there is no FMA): the same bits.
+[[gnu::target("avx2")]] inline bool leave_row_avx2(detail::ActiveEdges& a, double top,
+                                                                     double bottom) {
+  const __m256d t = _mm256_set1_pd(top), b = _mm256_set1_pd(bottom);
+  bool all_go_on = true;
+  std::size_t k = 0;
+  for (; k + 4 <= a.size; k += 4) {
+    const __m256d y0 = _mm256_loadu_pd(&a.y0[k]), y1 = _mm256_loadu_pd(&a.y1[k]);
+    const __m256d x0 = _mm256_loadu_pd(&a.x0[k]), x1 = _mm256_loadu_pd(&a.x1[k]);
+    const __m256d on = _mm256_cmp_pd(y1, b, _CMP_GT_OQ);  // goes on below the row
+    __m256d x = _mm256_add_pd(x0, _mm256_mul_pd(_mm256_sub_pd(b, y0), _mm256_loadu_pd(&a.dxdy[k])));
+    const __m256d lo = _mm256_min_pd(x1, x0), hi = _mm256_max_pd(x1, x0);  // (x1 < x0 ? x1 : x0), (x0 < x1 ? x1 : x0)
+    x = _mm256_min_pd(hi, _mm256_max_pd(x, lo));
+    _mm256_storeu_pd(&a.xb[k], _mm256_blendv_pd(x1, x, on));
+    const __m256d ya = _mm256_max_pd(y0, t);
+    const __m256d yb = _mm256_blendv_pd(y1, b, on);
+    const __m256d h = _mm256_mul_pd(_mm256_sub_pd(yb, ya), _mm256_loadu_pd(&a.winding[k]));
+    _mm256_storeu_pd(&a.h[k], _mm256_and_pd(h, _mm256_cmp_pd(yb, ya, _CMP_GT_OQ)));
+    all_go_on = all_go_on && _mm256_movemask_pd(on) == 0xF;
+  }
+  return leave_row(a, k, top, bottom) && all_go_on;
+}
+#endif
+
 template <FillRule R, bool kAvx2, bool kChoose>
 [[gnu::always_inline]] inline void sweep_analytic_rows(const detail::EdgeTableView& table, const RowBuffers& b,
                                                        int y_from, int y_to, int width, CoverageSink& sink) {
@@ -63,65 +119,78 @@ template <FillRule R, bool kAvx2, bool kChoose>
   const std::vector<std::uint32_t>& order = table.order;
   const std::vector<std::uint32_t>& bucket_start = table.bucket_start;
   const int y_min = table.y_min;
-  std::vector<std::uint32_t>& active = b.active;
-  std::vector<double>& active_x = b.active_x;
+  detail::ActiveEdges& a = b.columns;
   std::vector<int>& piece_cells = b.piece_cells;
   double* const acc = b.acc;
   std::uint64_t* const bits = b.bits;
   float* const cov = b.cov;
-  // active_x[k]: where active edge k enters the current row (its x at max(y0, row top)). An edge that goes on below
-  // the row leaves at x_at(bottom), which is the very number x_at(top) gives in the next row: it is kept instead of
+  // a.x[k]: where active edge k enters the current row (its x at max(y0, row top)). An edge that goes on below the
+  // row leaves at x_at(bottom), which is the very number x_at(top) gives in the next row: it is kept instead of
   // computed twice. (Edges active from before y_from enter with x_at(y_from), the same number again.)
-  active_x.resize(active.size());
-  for (std::size_t k = 0; k < active.size(); ++k) {
-    const Edge& e = edges[active[k]];
-    active_x[k] = y_from <= e.y0 ? e.x0 : e.x_at(y_from);
+  a.clear();
+  a.reserve(b.active.size());
+  for (const std::uint32_t index : b.active) {
+    const Edge& e = edges[index];
+    a.push(e, y_from <= e.y0 ? e.x0 : e.x_at(y_from));
   }
   for (int y = y_from; y < y_to; ++y) {
     const int r = y - y_min;
-    for (std::uint32_t k = bucket_start[r]; k < bucket_start[r + 1]; ++k) {
-      active.push_back(order[k]);
-      active_x.push_back(edges[order[k]].x0);  // bucketed in its first row: it enters at its top
+    const std::uint32_t first = bucket_start[r], last = bucket_start[r + 1];
+    if (last > first) {
+      a.reserve(a.size + (last - first));
+      for (std::uint32_t k = first; k < last; ++k) {
+        const Edge& e = edges[order[k]];
+        a.push(e, e.x0);  // bucketed in its first row: it enters at its top
+      }
     }
-    if (active.empty()) continue;
-    if (piece_cells.size() < 2 * active.size()) piece_cells.resize(4 * active.size());
+    const std::size_t n = a.size;
+    if (n == 0) continue;
+    if (piece_cells.size() < 2 * n) piece_cells.resize(4 * n);
     int* const cells_of = piece_cells.data();
     int pieces = 0;
     const double top = y, bottom = y + 1.0;
     int x_lo = width + 1, x_hi = 0;
-    std::size_t kept = 0;
+    bool all_go_on;
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+    if constexpr (kAvx2) {
+      all_go_on = leave_row_avx2(a, top, bottom);
+    } else
+#endif
+    {
+      all_go_on = leave_row(a, 0, top, bottom);
+    }
     // A crowded row (pieces for a good share of its cells, as in a star with hundreds of crossings per row): its
     // cells are marked touched all at once from x_lo to x_hi instead of piece by piece, and swept in one run. The
     // test depends on the row's own edges only, so a band or a queued fill decides every row as a whole sweep does.
-    const bool crowded = active.size() * kCrowdedCellsPerEdge >= static_cast<std::size_t>(width);
-    for (std::size_t k = 0; k < active.size(); ++k) {
-      const std::uint32_t index = active[k];
-      const Edge& e = edges[index];
-      const double ya = std::max(e.y0, top);
-      const double xa = active_x[k];
-      double yb, xb;
-      if (e.y1 > bottom) {
-        yb = bottom;
-        xb = e.x_at(bottom);
-        active[kept] = index;
-        active_x[kept++] = xb;
-      } else {
-        yb = e.y1;
-        xb = e.x1;
-      }
-      if (yb > ya) {
-        accumulate_piece<kChoose>(acc, xa, xb, (yb - ya) * e.winding);
-        const int c0 = static_cast<int>(std::min(xa, xb)), c1 = static_cast<int>(std::max(xa, xb)) + 1;
-        cells_of[2 * pieces] = c0;  // marked touched after the row, unless it is narrow or crowded
-        cells_of[2 * pieces + 1] = c1;
-        ++pieces;
-        x_lo = std::min(x_lo, c0);
-        x_hi = std::max(x_hi, c1);
-      }
+    const bool crowded = n * kCrowdedCellsPerEdge >= static_cast<std::size_t>(width);
+    const double* const xs = a.x.data();
+    const double* const xbs = a.xb.data();
+    const double* const hs = a.h.data();
+    for (std::size_t k = 0; k < n; ++k) {
+      if (hs[k] == 0) continue;
+      const double xa = xs[k], xb = xbs[k];
+      accumulate_piece<kChoose>(acc, xa, xb, hs[k]);
+      const int c0 = static_cast<int>(std::min(xa, xb)), c1 = static_cast<int>(std::max(xa, xb)) + 1;
+      cells_of[2 * pieces] = c0;  // marked touched after the row, unless it is narrow or crowded
+      cells_of[2 * pieces + 1] = c1;
+      ++pieces;
+      x_lo = std::min(x_lo, c0);
+      x_hi = std::max(x_hi, c1);
     }
-    // Shrink in place (resize is an out-of-line call that would cost a row of a thin shape a tenth of its time).
-    active.erase(active.begin() + static_cast<std::ptrdiff_t>(kept), active.end());
-    active_x.erase(active_x.begin() + static_cast<std::ptrdiff_t>(kept), active_x.end());
+    // The edges that go on below enter the next row where they leave this one; the others retire (the list shrinks
+    // in place, in order).
+    if (all_go_on) {
+      a.x.swap(a.xb);
+    } else {
+      std::size_t kept = 0;
+      for (std::size_t k = 0; k < n; ++k) {
+        if (a.y1[k] > bottom) {
+          if (kept != k) a.move(k, kept);
+          a.x[kept++] = a.xb[k];
+        }
+      }
+      a.size = kept;
+    }
     if (x_lo <= x_hi) {
       if (x_hi - x_lo < detail::kNarrowRowCells) {
         detail::resolve_narrow_row<R, kAvx2>(y, width, x_lo, x_hi, acc, cov, sink);
@@ -388,7 +457,7 @@ void detail::RasterizerImpl::sweep_analytic_band(const EdgeTableView& table, Fil
   if (s.coverage.size() < padded) s.coverage.resize(padded);
   // An edge whose bottom is at or above the band's top was retired before it (e.y1 > bottom keeps an edge).
   start_active(table, y_from, y_from, s.active);
-  const RowBuffers buffers{s.active, s.active_x, s.piece_cells, s.accumulation.data(), s.touched.data(),
+  const RowBuffers buffers{s.active, s.columns, s.piece_cells, s.accumulation.data(), s.touched.data(),
                            s.coverage.data()};
   with_rule(rule, [&](auto r) {
     constexpr FillRule R = decltype(r)::value;
