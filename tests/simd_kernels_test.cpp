@@ -280,5 +280,39 @@ TEST(AccumulatePiece, ChoosingWithoutBranchesAddsTheSameNumbers) {
   for (int count : shapes) EXPECT_GT(count, 500);
 }
 
+// The AVX2 row sweep adds a long piece's whole cells four at a time (add_whole_cells_avx2): each whole cell must get
+// + half twice, as the loop adds it, not + 2 half (a different number where the cell already holds something). Rows
+// of pieces crossing up to twelve cells, on top of each other, in rows with the sweep's padding.
+TEST(AccumulatePiece, Avx2WholeCellsAddTheSameNumbers) {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "no AVX2 on this processor: only the portable loop runs";
+  std::mt19937 rng(2027);
+  std::uniform_real_distribution<double> unit(0, 1);
+  constexpr int kCells = 64, kRow = kCells + detail::kRowPadding;
+  int long_pieces = 0;
+  for (int row = 0; row < 3000; ++row) {
+    double loop[kRow] = {}, avx2[kRow] = {}, avx2_chosen[kRow] = {};
+    const int pieces = 1 + static_cast<int>(rng() % 6);
+    for (int p = 0; p < pieces; ++p) {
+      const double xa = static_cast<double>(rng() % 50) + (rng() % 3 == 0 ? 0.0 : unit(rng));
+      const double span = unit(rng) * static_cast<double>(1 + rng() % 12);
+      const double xb = rng() % 2 ? std::min(xa + span, 60.0) : std::max(xa - span, 0.0);
+      const double h = (unit(rng) * 2 - 1) * unit(rng);
+      long_pieces += static_cast<int>(std::max(xa, xb)) - static_cast<int>(std::min(xa, xb)) > 2;
+      detail::accumulate_piece<false, false>(loop, xa, xb, h);
+      detail::accumulate_piece<false, true>(avx2, xa, xb, h);
+      detail::accumulate_piece<true, true>(avx2_chosen, xa, xb, h);
+    }
+    for (int i = 0; i < kRow; ++i) {
+      ASSERT_EQ(loop[i], avx2[i]) << "row " << row << " cell " << i;
+      ASSERT_EQ(loop[i], avx2_chosen[i]) << "row " << row << " cell " << i;
+    }
+  }
+  EXPECT_GT(long_pieces, 3000);
+#else
+  GTEST_SKIP() << "no AVX2 kernels in this build";
+#endif
+}
+
 }  // namespace
 }  // namespace vraster::test

@@ -169,7 +169,7 @@ template <FillRule R, bool kAvx2, bool kChoose>
     for (std::size_t k = 0; k < n; ++k) {
       if (hs[k] == 0) continue;
       const double xa = xs[k], xb = xbs[k];
-      accumulate_piece<kChoose>(acc, xa, xb, hs[k]);
+      accumulate_piece<kChoose, kAvx2>(acc, xa, xb, hs[k]);
       const int c0 = static_cast<int>(std::min(xa, xb)), c1 = static_cast<int>(std::max(xa, xb)) + 1;
       cells_of[2 * pieces] = c0;  // marked touched after the row, unless it is narrow or crowded
       cells_of[2 * pieces + 1] = c1;
