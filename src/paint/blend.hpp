@@ -301,6 +301,9 @@ void over8_solid_portable(std::uint32_t* px, int n, const float* coverage, float
 // over8_avx2.cpp: the same two loops by hand in AVX2, the same bits.
 void over8_constant_avx2(std::uint32_t* px, int n, std::uint32_t s);
 void over8_solid_avx2(std::uint32_t* px, int n, const float* coverage, float scale, std::uint32_t c);
+// over8_avx512.cpp: the same two loops sixteen pixels a step in AVX-512 BW, the same bits.
+void over8_constant_avx512(std::uint32_t* px, int n, std::uint32_t s);
+void over8_solid_avx512(std::uint32_t* px, int n, const float* coverage, float scale, std::uint32_t c);
 #endif
 /// The two loops every fill ends in: the AVX2 kernel where the processor has it, else the portable loop.
 void over8_constant(std::uint32_t* px, int n, std::uint32_t s);

@@ -48,6 +48,7 @@ VRASTER_PAINT_CLONES void over8_solid_portable(std::uint32_t* px, int n, const f
 
 Over8ConstantFn over8_constant_for_cpu() {
 #ifdef VRASTER_HAVE_AVX2_KERNELS
+  if (cpu_has_avx512bw()) return &over8_constant_avx512;
   if (cpu_has_avx2()) return &over8_constant_avx2;
 #endif
   return &over8_constant_portable;
@@ -55,6 +56,7 @@ Over8ConstantFn over8_constant_for_cpu() {
 
 Over8SolidFn over8_solid_for_cpu() {
 #ifdef VRASTER_HAVE_AVX2_KERNELS
+  if (cpu_has_avx512bw()) return &over8_solid_avx512;
   if (cpu_has_avx2()) return &over8_solid_avx2;
 #endif
   return &over8_solid_portable;
