@@ -250,11 +250,13 @@ TEST(SourceOverKernels, Avx2GivesThePortableBitsOnEveryLengthAndAlignment) {
 #endif
 }
 
-// The sixteen-pixel loops run only where the processor has AVX-512 BW; elsewhere there is nothing of them to test.
+// The sixteen-pixel loops run only where the processor has AVX-512 BW and VL; elsewhere there is nothing of them
+// to test.
 TEST(SourceOverKernels, Avx512GivesThePortableBitsOnEveryLengthAndAlignment) {
 #ifdef VRASTER_HAVE_AVX2_KERNELS
-  if (!__builtin_cpu_supports("avx512f") || !__builtin_cpu_supports("avx512bw")) {
-    GTEST_SKIP() << "no AVX-512 BW on this processor: the AVX2 or portable loops run";
+  if (!__builtin_cpu_supports("avx512f") || !__builtin_cpu_supports("avx512bw") ||
+      !__builtin_cpu_supports("avx512vl")) {
+    GTEST_SKIP() << "no AVX-512 BW and VL on this processor: the AVX2 or portable loops run";
   }
   expect_portable_bits(&detail::over8_constant_avx512, &detail::over8_solid_avx512);
 #else

@@ -1,9 +1,10 @@
-// The two source-over loops of over8_avx2.cpp in AVX-512 (BW): sixteen pixels a step, and the ends of a run with
-// mask registers, which cost no more than a full step (AVX2's masked stores are slow on some processors). Picked
-// at run time where the processor has AVX-512 BW (composite.cpp). The arithmetic is blend.hpp's lane by lane, as in
+// The two source-over loops of over8_avx2.cpp in AVX-512 (BW, VL): sixteen pixels a step, and the ends of a run
+// with mask registers, which cost no more than a full step (AVX2's masked stores are slow on some processors); a run
+// of up to eight pixels (most of them) is one eight-pixel step, so that it reads no more memory than it needs.
+// Picked at run time where the processor has AVX-512 BW and VL (composite.cpp). The arithmetic is blend.hpp's lane by lane, as in
 // the AVX2 loops, so the bits are those of the portable loops.
 #include "blend.hpp"
-#include "raster/cpu.hpp"
+#include "paint/over8_avx2.hpp"
 
 #ifdef VRASTER_HAVE_AVX2_KERNELS
 
@@ -14,7 +15,7 @@
 namespace vraster::detail {
 namespace {
 
-#define VRASTER_AVX512 [[gnu::target("avx512f,avx512bw"), gnu::always_inline]] inline
+#define VRASTER_AVX512 [[gnu::target("avx512f,avx512bw,avx512vl"), gnu::always_inline]] inline
 
 // round(a * f / 255) per 16-bit lane for a, f in [0, 255] (scale8's form).
 VRASTER_AVX512 __m512i scale32(__m512i a, __m512i f) {
@@ -64,7 +65,14 @@ VRASTER_AVX512 __m512i quantize8x16(__m512 v, __m512 scale) {
 
 }  // namespace
 
-[[gnu::target("avx512f,avx512bw")]] void over8_constant_avx512(std::uint32_t* px, int n, std::uint32_t s) {
+[[gnu::target("avx512f,avx512bw,avx512vl")]] void over8_constant_avx512(std::uint32_t* px, int n, std::uint32_t s) {
+  if (n <= 8) {  // a short run (most of them): one eight-pixel step under a mask register
+    const __mmask8 m = static_cast<__mmask8>((1u << n) - 1u);
+    const __m256i d = _mm256_maskz_loadu_epi32(m, px);
+    _mm256_mask_storeu_epi32(px, m, avx2::over_constant8(d, _mm256_set1_epi32(static_cast<int>(s)),
+                                                         _mm256_set1_epi16(static_cast<short>(255u - (s >> 24)))));
+    return;
+  }
   const __m512i src = _mm512_set1_epi32(static_cast<int>(s));
   const __m512i inv = _mm512_set1_epi16(static_cast<short>(255u - (s >> 24)));
   int i = 0;
@@ -77,8 +85,15 @@ VRASTER_AVX512 __m512i quantize8x16(__m512 v, __m512 scale) {
   }
 }
 
-[[gnu::target("avx512f,avx512bw")]] void over8_solid_avx512(std::uint32_t* px, int n, const float* coverage,
+[[gnu::target("avx512f,avx512bw,avx512vl")]] void over8_solid_avx512(std::uint32_t* px, int n, const float* coverage,
                                                            float scale, std::uint32_t c) {
+  if (n <= 8) {  // a short run (most of them): one eight-pixel step under a mask register
+    const __mmask8 m = static_cast<__mmask8>((1u << n) - 1u);
+    const __m256i c16 = _mm256_unpacklo_epi8(_mm256_set1_epi32(static_cast<int>(c)), _mm256_setzero_si256());
+    const __m256i k = avx2::quantize8x8(_mm256_maskz_loadu_ps(m, coverage), _mm256_set1_ps(scale));
+    _mm256_mask_storeu_epi32(px, m, avx2::over_coverage8(_mm256_maskz_loadu_epi32(m, px), c16, k));
+    return;
+  }
   const __m512i c16 = _mm512_unpacklo_epi8(_mm512_set1_epi32(static_cast<int>(c)), _mm512_setzero_si512());
   const __m512 sc = _mm512_set1_ps(scale);
   int i = 0;

@@ -20,9 +20,10 @@ inline bool cpu_has_avx2() {
   static const bool has = __builtin_cpu_supports("avx2");
   return has && !portable_kernels_forced();
 }
-/// AVX-512 F and BW (the pixel loops' sixteen-pixel steps); such a processor has AVX2 too.
+/// AVX-512 F, BW and VL (the pixel loops' sixteen-pixel steps); such a processor has AVX2 too.
 inline bool cpu_has_avx512bw() {
-  static const bool has = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw");
+  static const bool has = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+                          __builtin_cpu_supports("avx512vl");
   return has && cpu_has_avx2();
 }
 #endif
