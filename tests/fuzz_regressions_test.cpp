@@ -74,6 +74,25 @@ TEST(FuzzRegression, StrokeOfPointsNearTheDoubleRangeStaysFinite) {
 // fuzz_canvas: a shadow offset of -1e300 was floored into an int (UBSan), and a blur far wider than the canvas
 // made the shadow's working box exceed the image limit, which threw and dropped the shape itself. Shadows that
 // cannot reach the image are not drawn; the shape always is.
+// fuzz_stroke: a stroke 2000 units wide with round caps, dashed every 0.003 units along 100 units at tolerance 1/8,
+// needs more outline points than the stroker's limit. That is stroke_to_path's one documented error: it must be
+// thrown as such (naming the limit), soon, and not as anything else; the fuzz target now accepts exactly that.
+TEST(FuzzRegression, FinelyDashedVeryWideStrokeReportsTheOutlineLimit) {
+  Path line;
+  line.move_to({0, 0});
+  line.line_to({100, 0});
+  StrokeStyle style;
+  style.width = 2000;
+  style.cap = LineCap::Round;
+  style.dashes = {0.003};
+  try {
+    (void)stroke_to_path(line, style, 0.125);
+    FAIL() << "expected the outline limit";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(std::to_string(kMaxStrokeOutlinePoints)), std::string::npos) << e.what();
+  }
+}
+
 TEST(FuzzRegression, ShadowsFarOutOfReachLeaveTheShapeDrawn) {
   for (const Shadow shadow : {Shadow{Color{0, 0, 0, 1}, -1e300, 0, 0}, Shadow{Color{0, 0, 0, 1}, 0, 1e300, 2},
                               Shadow{Color{0, 0, 0, 1}, 3, 3, 1e300}, Shadow{Color{0, 0, 0, 1}, 3, 3, 1e6}}) {
