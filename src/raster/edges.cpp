@@ -116,13 +116,12 @@ void detail::build_edges(const Polylines& lines, int width, int height, std::vec
   };
   if (work && inside) {
     // band_work's sums over the segments as they go by (the same edges, nothing clipped): no second pass.
-    double outline = 0, signed_area = 0;
+    WorkSums sums;
     lines.for_each_segment([&](Point p, Point q) {
-      outline += std::abs(q.y - p.y) + std::abs(q.x - p.x);
-      signed_area += 0.5 * (p.x + q.x) * (q.y - p.y);
+      sums.add(p, q);
       add(p, q);
     });
-    *work = work_of(outline, signed_area);
+    *work = sums.work();
   } else {
     lines.for_each_segment(add);
     if (work) *work = band_work(edges);

@@ -45,12 +45,9 @@ constexpr int kBuildChunksPerThread = 8;
 // band_work's estimate (sweep.cpp) from an outline before it is built: the same sums over the segments as they come,
 // unclipped. It only decides whether a fill waits in the queue, and whether the queue is worth threads.
 double outline_work(const Polylines& lines) {
-  double outline = 0, signed_area = 0;
-  lines.for_each_segment([&](Point p, Point q) {
-    outline += std::abs(q.y - p.y) + std::abs(q.x - p.x);
-    signed_area += 0.5 * (p.x + q.x) * (q.y - p.y);
-  });
-  const double work = outline + std::abs(signed_area) / kRecordedPixelsPerUnit;
+  WorkSums sums;
+  lines.for_each_segment([&](Point p, Point q) { sums.add(p, q); });
+  const double work = sums.work();
   return std::isfinite(work) ? work : 0.0;  // points no edge can come from (NaN) must not poison the queue's sums
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -95,6 +96,15 @@ double outline_cells(const std::vector<Edge>& edges);
 double band_work(const std::vector<Edge>& edges);
 /// band_work from its two sums: outline (summed |dy| + |dx|) and signed area.
 double work_of(double outline, double signed_area);
+/// band_work's two sums taken over segments as they come (an outline before or while its edges are built).
+struct WorkSums {
+  double outline = 0, signed_area = 0;
+  void add(Point p, Point q) {
+    outline += std::abs(q.y - p.y) + std::abs(q.x - p.x);
+    signed_area += 0.5 * (p.x + q.x) * (q.y - p.y);
+  }
+  double work() const { return work_of(outline, signed_area); }
+};
 /// The cells [x_base, x_base + columns) that (non-empty) `edges` can write.
 void edge_columns(const std::vector<Edge>& edges, int& x_base, int& columns);
 /// Whether `edges` (rows [y_min, y_max), `columns` columns) take the dense sweep: small paths, a few thousand cells.

@@ -89,8 +89,7 @@ bool short_edges(const std::vector<Edge>& edges) {
 #ifdef VRASTER_HAVE_AVX2_KERNELS
 // leave_row four edges a step, with the same operations (maxpd / minpd give the ternaries' values on these
 // non-NaN numbers, and there is no FMA): the same bits.
-[[gnu::target("avx2")]] inline bool leave_row_avx2(detail::ActiveEdges& a, double top,
-                                                                     double bottom) {
+[[gnu::target("avx2")]] inline bool leave_row_avx2(detail::ActiveEdges& a, double top, double bottom) {
   const __m256d t = _mm256_set1_pd(top), b = _mm256_set1_pd(bottom);
   bool all_go_on = true;
   std::size_t k = 0;
