@@ -139,6 +139,19 @@ template <FillRule R>
   sum = _mm_cvtsd_f64(_mm256_castpd256_pd128(carry));
 }
 
+// A block of four cells of a narrow row (resolve_narrow_row), where every cell outside the row's touched range is
+// zero: the block is swept whole and zeroed by a store of constants. The store's data then does not wait for the
+// cells, so the next row's pieces, which add to the same cells, do not wait for this row's sweep: rows overlap
+// instead of forming one chain through memory (a sliver's rows are a few cells each, and that chain was their cost).
+template <FillRule R>
+[[gnu::target("avx2")]] inline void sweep_zeroed_block_avx2(double* cells, float* cov, double& sum) {
+  const __m256d v = _mm256_loadu_pd(cells);
+  _mm256_storeu_pd(cells, _mm256_setzero_pd());
+  __m256d carry = _mm256_set1_pd(sum);
+  sweep_block_avx2<R>(v, cov, carry);
+  sum = _mm_cvtsd_f64(_mm256_castpd256_pd128(carry));
+}
+
 #endif
 
 /// cells[0, n) -> cov[0, n): cov[i] is the coverage of sum + cells[0] + ... + cells[i] (summed in blocks, above);
@@ -400,7 +413,7 @@ template <FillRule R, bool kAvx2 = false>
   for (int i = 0; i < n; i += 4) {
 #ifdef VRASTER_HAVE_AVX2_KERNELS
     if constexpr (kAvx2) {
-      sweep_short_run_avx2<R>(acc + x_lo + i, cov + i, std::min(4, n - i), sum);
+      sweep_zeroed_block_avx2<R>(acc + x_lo + i, cov + i, sum);
       continue;
     }
 #endif

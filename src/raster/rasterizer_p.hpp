@@ -224,7 +224,6 @@ class RasterizerImpl {
     std::vector<Crossing> crossings;      // aliased sweep: active edges with their x at the sample row
     std::vector<double> accumulation;     // analytic sweep: one row of signed area deltas, width + 2 cells
     std::vector<std::uint64_t> touched;   // analytic sweep: one bit per cell written in the current row
-    std::vector<int> piece_cells;         // analytic sweep: the cells each piece of the current row wrote
     std::vector<float> coverage;          // analytic sweep: coverage handed to the sink
     std::vector<double> dense_block;      // queued dense fills: rows x columns of cells, zero between fills
     std::vector<int> dense_extent;        // queued dense fills: first and last cell written, per row

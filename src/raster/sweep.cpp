@@ -40,7 +40,6 @@ constexpr std::size_t kCrowdedCellsPerEdge = 4;
 struct RowBuffers {
   const std::vector<std::uint32_t>& active;  // the active list at the band's top (start_active)
   detail::ActiveEdges& columns;
-  std::vector<int>& piece_cells;  // the first and last cell of each piece of the current row
   double* acc;
   std::uint64_t* bits;
   float* cov;
@@ -58,6 +57,11 @@ bool short_edges(const std::vector<Edge>& edges) {
   for (std::size_t i = 0; i < edges.size(); i += step, ++n) rows += edges[i].y1 - edges[i].y0;
   return rows < kLongEdgeRows * static_cast<double>(n);
 }
+
+// The first and the last cell a piece from x = xa to x = xb adds to (accumulate_piece: the cell of its left end, and
+// the one after the cell of its right end).
+inline int piece_first_cell(double xa, double xb) { return static_cast<int>(std::min(xa, xb)); }
+inline int piece_last_cell(double xa, double xb) { return static_cast<int>(std::max(xa, xb)) + 1; }
 
 // Where active edges [k, size) leave the row [top, bottom), and the signed height of their pieces there (0: none),
 // into columns xb and h: Edge::x_at(bottom) for an edge that goes on below the row (its end x1 otherwise), and
@@ -88,12 +92,15 @@ bool short_edges(const std::vector<Edge>& edges) {
 
 #ifdef VRASTER_HAVE_AVX2_KERNELS
 // leave_row four edges a step, with the same operations (maxpd / minpd give the ternaries' values on these
-// non-NaN numbers, and there is no FMA): the same bits.
+// non-NaN numbers, and there is no FMA): the same bits. The last step may take up to three lanes past the list (the
+// columns' padding, left over from earlier edges): what they compute is stored in the padding and never read, and
+// they count as going on.
 [[gnu::target("avx2")]] inline bool leave_row_avx2(detail::ActiveEdges& a, double top, double bottom) {
+  static_assert(detail::ActiveEdges::kPadding >= 3);
   const __m256d t = _mm256_set1_pd(top), b = _mm256_set1_pd(bottom);
-  bool all_go_on = true;
-  std::size_t k = 0;
-  for (; k + 4 <= a.size; k += 4) {
+  const __m256i lanes = _mm256_setr_epi64x(0, 1, 2, 3);
+  int ends = 0;  // lanes of edges that end in the row
+  for (std::size_t k = 0; k < a.size; k += 4) {
     const __m256d y0 = _mm256_loadu_pd(&a.y0[k]), y1 = _mm256_loadu_pd(&a.y1[k]);
     const __m256d x0 = _mm256_loadu_pd(&a.x0[k]), x1 = _mm256_loadu_pd(&a.x1[k]);
     const __m256d on = _mm256_cmp_pd(y1, b, _CMP_GT_OQ);  // goes on below the row
@@ -105,9 +112,10 @@ bool short_edges(const std::vector<Edge>& edges) {
     const __m256d yb = _mm256_blendv_pd(y1, b, on);
     const __m256d h = _mm256_mul_pd(_mm256_sub_pd(yb, ya), _mm256_loadu_pd(&a.winding[k]));
     _mm256_storeu_pd(&a.h[k], _mm256_and_pd(h, _mm256_cmp_pd(yb, ya, _CMP_GT_OQ)));
-    all_go_on = all_go_on && _mm256_movemask_pd(on) == 0xF;
+    const __m256i in_list = _mm256_cmpgt_epi64(_mm256_set1_epi64x(static_cast<long long>(a.size - k)), lanes);
+    ends |= _mm256_movemask_pd(_mm256_andnot_pd(on, _mm256_castsi256_pd(in_list)));
   }
-  return leave_row(a, k, top, bottom) && all_go_on;
+  return ends == 0;
 }
 #endif
 
@@ -119,7 +127,6 @@ template <FillRule R, bool kAvx2, bool kChoose>
   const std::vector<std::uint32_t>& bucket_start = table.bucket_start;
   const int y_min = table.y_min;
   detail::ActiveEdges& a = b.columns;
-  std::vector<int>& piece_cells = b.piece_cells;
   double* const acc = b.acc;
   std::uint64_t* const bits = b.bits;
   float* const cov = b.cov;
@@ -144,9 +151,6 @@ template <FillRule R, bool kAvx2, bool kChoose>
     }
     const std::size_t n = a.size;
     if (n == 0) continue;
-    if (piece_cells.size() < 2 * n) piece_cells.resize(4 * n);
-    int* const cells_of = piece_cells.data();
-    int pieces = 0;
     const double top = y, bottom = y + 1.0;
     int x_lo = width + 1, x_hi = 0;
     bool all_go_on;
@@ -169,12 +173,20 @@ template <FillRule R, bool kAvx2, bool kChoose>
       if (hs[k] == 0) continue;
       const double xa = xs[k], xb = xbs[k];
       accumulate_piece<kChoose, kAvx2>(acc, xa, xb, hs[k]);
-      const int c0 = static_cast<int>(std::min(xa, xb)), c1 = static_cast<int>(std::max(xa, xb)) + 1;
-      cells_of[2 * pieces] = c0;  // marked touched after the row, unless it is narrow or crowded
-      cells_of[2 * pieces + 1] = c1;
-      ++pieces;
-      x_lo = std::min(x_lo, c0);
-      x_hi = std::max(x_hi, c1);
+      x_lo = std::min(x_lo, piece_first_cell(xa, xb));
+      x_hi = std::max(x_hi, piece_last_cell(xa, xb));
+    }
+    // A wide row's touched cells are marked now, while the columns still hold the row's pieces (the pieces' cells
+    // again, rather than noted piece by piece: most rows are narrow and need none).
+    const bool narrow = x_hi - x_lo < detail::kNarrowRowCells;
+    if (x_lo <= x_hi && !narrow) {
+      if (crowded) {
+        mark_cells(bits, x_lo, x_hi);
+      } else {
+        for (std::size_t k = 0; k < n; ++k) {
+          if (hs[k] != 0) mark_cells(bits, piece_first_cell(xs[k], xbs[k]), piece_last_cell(xs[k], xbs[k]));
+        }
+      }
     }
     // The edges that go on below enter the next row where they leave this one; the others retire (the list shrinks
     // in place, in order).
@@ -190,16 +202,10 @@ template <FillRule R, bool kAvx2, bool kChoose>
       }
       a.size = kept;
     }
-    if (x_lo <= x_hi) {
-      if (x_hi - x_lo < detail::kNarrowRowCells) {
-        detail::resolve_narrow_row<R, kAvx2>(y, width, x_lo, x_hi, acc, cov, sink);
-        continue;
-      }
-      if (crowded) {
-        mark_cells(bits, x_lo, x_hi);
-      } else {
-        for (int p = 0; p < pieces; ++p) mark_cells(bits, cells_of[2 * p], cells_of[2 * p + 1]);
-      }
+    if (x_lo > x_hi) continue;
+    if (narrow) {
+      detail::resolve_narrow_row<R, kAvx2>(y, width, x_lo, x_hi, acc, cov, sink);
+    } else {
       resolve_row<R, kAvx2>(y, width, x_lo, x_hi, acc, bits, cov, sink);
     }
   }
@@ -456,7 +462,7 @@ void detail::RasterizerImpl::sweep_analytic_band(const EdgeTableView& table, Fil
   if (s.coverage.size() < padded) s.coverage.resize(padded);
   // An edge whose bottom is at or above the band's top was retired before it (e.y1 > bottom keeps an edge).
   start_active(table, y_from, y_from, s.active);
-  const RowBuffers buffers{s.active, s.columns, s.piece_cells, s.accumulation.data(), s.touched.data(),
+  const RowBuffers buffers{s.active, s.columns, s.accumulation.data(), s.touched.data(),
                            s.coverage.data()};
   with_rule(rule, [&](auto r) {
     constexpr FillRule R = decltype(r)::value;
