@@ -473,6 +473,56 @@ TEST(RasterContract, SpansComeInOrderInsideTheCanvasWithCoverageInRange) {
   }
 }
 
+// Thin shapes' short rows reach the sink in batches (CoverageSink::rows), of at most 32 rows. The calls still come in
+// increasing y (x increasing within a row) with spans right of a row's cells (a sliver that leaves the image on the
+// right) and wide rows between the batches, and the coverage is the exact area: in the row sweep (large shapes) and
+// in the dense sweep (small ones) alike.
+TEST(RasterContract, BatchedRowsKeepTheOrderAndTheArea) {
+  struct Log final : CoverageSink {
+    explicit Log(int w, int h) : grid(w, h) {}
+    CoverageGrid grid;  // checks the order of the calls it gets
+    int batches = 0;
+    std::size_t largest = 0;
+    void span(int y, int x0, int x1, float c) override { grid.span(y, x0, x1, c); }
+    void row(int y, int x0, int x1, const float* c) override { grid.row(y, x0, x1, c); }
+    void rows(const CoverageRow* r, std::size_t n) override {
+      ++batches;
+      largest = std::max(largest, n);
+      CoverageSink::rows(r, n);  // row() for each
+    }
+  };
+  struct Case {
+    int width, height;
+    std::vector<Polygon> shapes;
+  };
+  const std::vector<Case> cases = {
+      {200, 120,
+       {{{10, 2}, {40, 50}, {10.4, 2.2}},             // narrow rows
+        {{150, 52}, {400, 52}, {150, 64}},            // narrow rows with a span to the right edge, then wide rows
+        {{70, 65}, {190, 75}, {120, 100}},            // wide rows
+        {{100.25, 90}, {101.5, 118.5}, {99, 119}}}},  // rows of one and two pixels
+      // Dense: a sliver, and a shape whose only edge in the image is its left one (spans to the right edge).
+      {30, 70, {{{2, 1}, {9, 68}, {2.3, 1.5}}, {{12, 1}, {100, 1}, {100, 10}, {13, 10}}}},
+  };
+  for (const Case& c : cases) {
+    Polylines lines;
+    flatten(path_of(c.shapes), Affine{}, FlattenOptions{}, lines);
+    Log log(c.width, c.height);
+    Rasterizer r;
+    r.fill(lines, FillRule::NonZero, AntiAlias::Analytic, c.width, c.height, log);
+    ASSERT_TRUE(log.grid.violations().empty()) << log.grid.violations().front();
+    EXPECT_GT(log.batches, 1) << c.width << "x" << c.height;
+    EXPECT_LE(log.largest, 32u);
+    const std::vector<double> ref = reference_coverage(c.shapes, c.width, c.height);
+    for (int y = 0; y < c.height; ++y) {
+      for (int x = 0; x < c.width; ++x) {
+        ASSERT_NEAR(log.grid.at(x, y), ref[static_cast<std::size_t>(y) * c.width + x], kAnalyticTol)
+            << c.width << "x" << c.height << ", pixel " << x << "," << y;
+      }
+    }
+  }
+}
+
 // Records every sink call (to see spans that should not exist).
 struct SpanLog final : CoverageSink {
   struct Call {

@@ -76,6 +76,7 @@ class Compositor final : public CoverageSink {
 
   void span(int y, int x0, int x1, float coverage) override;
   void row(int y, int x0, int x1, const float* coverage) override;
+  void rows(const CoverageRow* rows, std::size_t count) override;
   /// As row(), then lerps by `clip` (may be null; levels as in blend_row). For unbounded operators the caller covers
   /// the whole clip region row by row, with coverage 0 where the shape is absent. `coverage` may be null here:
   /// coverage 1 everywhere.

@@ -62,6 +62,12 @@ std::string_view to_string(FillRule rule);
 bool parse_anti_alias(std::string_view name, AntiAlias& out);
 std::string_view to_string(AntiAlias aa);
 
+/// One row of a batch (CoverageSink::rows): pixels [x0, x1) of row y have coverage coverage[0 .. x1-x0).
+struct CoverageRow {
+  int y, x0, x1;
+  const float* coverage;
+};
+
 /// The one interface between the rasterizer and whoever turns coverage into pixels.
 /// Calls come in increasing y; within a row in increasing, non-overlapping x. Coverage is in (0, 1].
 /// Pixels not mentioned have coverage 0.
@@ -72,6 +78,12 @@ class CoverageSink {
   virtual void span(int y, int x0, int x1, float coverage) = 0;
   /// Pixels [x0, x1) of row y have coverage coverage[0 .. x1-x0) (entries may be 0).
   virtual void row(int y, int x0, int x1, const float* coverage) = 0;
+  /// rows[0 .. count) as row() calls, in that order (increasing y, one call per row). The rasterizer hands over the
+  /// short rows of thin shapes so, several at once: a sink that blends pixels can then do a batch in one loop,
+  /// without a call per row (the default makes the row() calls).
+  virtual void rows(const CoverageRow* rows, std::size_t count) {
+    for (std::size_t i = 0; i < count; ++i) row(rows[i].y, rows[i].x0, rows[i].x1, rows[i].coverage);
+  }
   /// Whether span() and row() may be called from several threads at once, each thread with rows of its own (a
   /// rasterizer with set_threads(n > 1) sweeps large fills in bands of rows). Calls then come in increasing y within
   /// each band, and no two threads ever get the same row. Sinks that keep state across calls answer false (the

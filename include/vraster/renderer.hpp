@@ -21,6 +21,7 @@ class SolidCompositor final : public CoverageSink {
   SolidCompositor(BasicImage<T>& image, Color color);
   void span(int y, int x0, int x1, float coverage) override;
   void row(int y, int x0, int x1, const float* coverage) override;
+  void rows(const CoverageRow* rows, std::size_t count) override;
   /// Rows are independent pixels and nothing changes between calls.
   bool takes_concurrent_rows() const override { return true; }
   void expect(int y0, int y1, int x0, int x1) override;

@@ -270,6 +270,13 @@ void Compositor<T>::row(int y, int x0, int x1, const float* coverage) {
 }
 
 template <class T>
+void Compositor<T>::rows(const CoverageRow* rows, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    row(rows[i].y, rows[i].x0, rows[i].x1, rows[i].coverage, static_cast<const T*>(nullptr));
+  }
+}
+
+template <class T>
 void Compositor<T>::row(int y, int x0, int x1, const float* coverage, const T* clip) {
   State& s = *state_;
   int skip = 0;

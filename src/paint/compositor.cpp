@@ -55,6 +55,22 @@ void SolidCompositor<T>::row(int y, int x0, int x1, const float* coverage) {
 }
 
 template <class T>
+void SolidCompositor<T>::rows(const CoverageRow* rows, std::size_t count) {
+  if constexpr (sizeof(T) == 1) {
+    if (premul_[3] == 0) return;
+    const std::uint32_t color = packed8_;
+    const auto over_solid = over_solid_;
+    for (std::size_t i = 0; i < count; ++i) {
+      const CoverageRow& r = rows[i];
+      auto* px = reinterpret_cast<std::uint32_t*>(static_cast<void*>(image_.pixel(r.x0, r.y)));
+      over_solid(px, r.x1 - r.x0, r.coverage, 1.f, color);
+    }
+  } else {
+    CoverageSink::rows(rows, count);
+  }
+}
+
+template <class T>
 void SolidCompositor<T>::span8(int y, int x0, int x1, float coverage) {
   const auto cov = static_cast<std::uint32_t>(coverage * 255.f + 0.5f);
   if (cov == 0 || premul_[3] == 0) return;

@@ -401,13 +401,14 @@ template <FillRule R, bool kAvx2 = false>
 // Rows whose pieces all fall within this many cells (thin shapes, the tips of others) are swept as one run.
 constexpr int kNarrowRowCells = 32;
 
-// resolve_row for a row whose touched cells lie in [x_lo, x_hi], at most kNarrowRowCells of them, without touched
-// bits: the cells in between are swept too (untouched ones are zero, and add nothing to the sum), with no search
-// for runs. One coverage call for the cells, one span for what lies right of them. Same padding and kAvx2 as
-// resolve_row.
+// A row whose touched cells lie in [x_lo, x_hi], at most kNarrowRowCells of them, swept without touched bits: the
+// cells in between are swept too (untouched ones are zero, and add nothing to the sum), with no search for runs.
+// Writes the coverage of cells x_lo .. x_hi to cov[0 .. n) (and up to three floats past, kNarrowRowCoverage in all),
+// zeroes the cells, and returns the coverage right of them: the sum holds to the row's end there (edges right of
+// the image were dropped). Same padding and kAvx2 as resolve_row.
+constexpr int kNarrowRowCoverage = kNarrowRowCells;
 template <FillRule R, bool kAvx2 = false>
-[[gnu::always_inline]] inline void resolve_narrow_row(int y, int width, int x_lo, int x_hi, double* acc, float* cov,
-                                                      CoverageSink& sink) {
+[[gnu::always_inline]] inline float sweep_narrow_row(int x_lo, int x_hi, double* acc, float* cov) {
   const int n = x_hi - x_lo + 1;
   double sum = 0;
   for (int i = 0; i < n; i += 4) {
@@ -419,18 +420,48 @@ template <FillRule R, bool kAvx2 = false>
 #endif
     sweep_block_scalar<R>(acc + x_lo + i, cov + i, std::min(4, n - i), sum);
   }
-  int a = 0, b = std::min(n, width - x_lo);
+  return coverage_of<R>(sum);
+}
+
+// The pixels of cov[0 .. n) (pixel x_lo + i has cov[i]) that have coverage, as [a, b): zeros trimmed from both ends,
+// and pixels at or right of the image's edge left out.
+inline void covered_part(const float* cov, int n, int x_lo, int width, int& a, int& b) {
+  a = 0;
+  b = std::min(n, width - x_lo);
   while (a < b && cov[a] == 0) ++a;
   while (b > a && cov[b - 1] == 0) --b;
-  if (b - a == 1) {
-    sink.span(y, x_lo + a, x_lo + b, cov[a]);
-  } else if (b > a) {
-    sink.row(y, x_lo + a, x_lo + b, cov + a);
-  }
-  // Right of the cells the sum holds to the row's end (edges right of the image were dropped).
-  const float c = coverage_of<R>(sum);
-  if (c > 0 && x_hi + 1 < width) sink.span(y, x_hi + 1, width, c);
 }
+
+// Short rows go to the sink in batches of this many (CoverageSink::rows): a thin shape's rows are a few pixels each,
+// and a call for each row cost about as much as the row's sweep (docs/performance.md).
+constexpr int kBatchRows = 32;
+
+// Rows for CoverageSink::rows, each with a slot of `slot` floats of its own for its coverage (kBatchRows slots).
+// Anything else the sweep hands to the sink goes after hand_over(), so that the calls stay in increasing y.
+class RowBatch {
+ public:
+  RowBatch(CoverageSink& sink, CoverageRow* rows, float* coverage, std::size_t slot)
+      : sink_(sink), rows_(rows), coverage_(coverage), slot_(slot) {}
+  /// Where the next row's coverage goes.
+  float* slot() const { return coverage_ + static_cast<std::size_t>(count_) * slot_; }
+  /// Pixels [x0, x1) of row y, coverage from c (in the current slot).
+  void add(int y, int x0, int x1, const float* c) {
+    rows_[count_++] = {y, x0, x1, c};
+    if (count_ == kBatchRows) hand_over();
+  }
+  /// The rows added so far, to the sink.
+  void hand_over() {
+    if (count_ > 0) sink_.rows(rows_, static_cast<std::size_t>(count_));
+    count_ = 0;
+  }
+
+ private:
+  CoverageSink& sink_;
+  CoverageRow* rows_;
+  float* coverage_;
+  std::size_t slot_;
+  int count_ = 0;
+};
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define VRASTER_CLONES __attribute__((target_clones("avx2", "default")))

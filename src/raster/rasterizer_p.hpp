@@ -108,6 +108,13 @@ struct WorkSums {
 /// The cells [x_base, x_base + columns) that (non-empty) `edges` can write.
 void edge_columns(const std::vector<Edge>& edges, int& x_base, int& columns);
 /// Whether `edges` (rows [y_min, y_max), `columns` columns) take the dense sweep: small paths, a few thousand cells.
+/// Where a dense sweep puts its rows for the sink (CoverageSink::rows): the batch, and a slot of coverage for each.
+struct DenseRowBuffers {
+  CoverageRow* batch;
+  float* coverage;  // columns floats per slot
+};
+/// Sizes `batch` and `coverage` for a dense sweep of `rows` rows of `columns` cells (kBatchRows rows at most at once).
+DenseRowBuffers dense_row_buffers(std::vector<CoverageRow>& batch, std::vector<float>& coverage, int rows, int columns);
 bool fits_dense(const std::vector<Edge>& edges, int y_min, int y_max, int columns, std::int64_t dense_limit);
 
 /// Crossings of `edges` (clipped to rows [0, height)) inside pixel rows: per row, the pairs of edges whose x order
@@ -225,6 +232,8 @@ class RasterizerImpl {
     std::vector<double> accumulation;     // analytic sweep: one row of signed area deltas, width + 2 cells
     std::vector<std::uint64_t> touched;   // analytic sweep: one bit per cell written in the current row
     std::vector<float> coverage;          // analytic sweep: coverage handed to the sink
+    std::vector<CoverageRow> batch;       // analytic and queued dense sweeps: rows handed to the sink together
+    std::vector<float> batch_coverage;    // analytic sweep: the narrow rows' coverage (queued dense: `coverage`)
     std::vector<double> dense_block;      // queued dense fills: rows x columns of cells, zero between fills
     std::vector<int> dense_extent;        // queued dense fills: first and last cell written, per row
     BucketScratch bucket;                 // building queued fills
@@ -266,7 +275,8 @@ class RasterizerImpl {
   std::vector<std::uint32_t> cursor_;        // flush: fill positions in band_entries_
   std::vector<BandScratch> bands_{1};       // per thread: the sweeps' row buffers
   std::unique_ptr<BandPool> pool_;           // set_threads(n > 1): the workers that sweep bands
-  std::vector<float> row_coverage_;          // dense sweep: coverage handed to the sink
+  std::vector<float> row_coverage_;          // dense sweep: coverage handed to the sink, a slot per batched row
+  std::vector<CoverageRow> dense_batch_;     // dense sweep: the rows of a batch
   std::vector<double> dense_block_;          // small paths: rows x columns of cells, zero between fills
   std::vector<int> dense_extent_;            // small paths: first and last cell written, per row
   std::vector<float> rect_coverage_;         // fill_rect: the coverage of up to three rows

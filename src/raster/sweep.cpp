@@ -43,6 +43,8 @@ struct RowBuffers {
   double* acc;
   std::uint64_t* bits;
   float* cov;
+  CoverageRow* batch;     // narrow rows waiting for the sink (detail::kBatchRows)
+  float* batch_coverage;  // their coverage, kNarrowRowCoverage floats a row
 };
 
 // Whether a fill's edges are short (on average under kLongEdgeRows rows, judged on up to 256 of them). Pieces of
@@ -130,6 +132,7 @@ template <FillRule R, bool kAvx2, bool kChoose>
   double* const acc = b.acc;
   std::uint64_t* const bits = b.bits;
   float* const cov = b.cov;
+  detail::RowBatch batch(sink, b.batch, b.batch_coverage, detail::kNarrowRowCoverage);  // the narrow rows
   // a.x[k]: where active edge k enters the current row (its x at max(y0, row top)). An edge that goes on below the
   // row leaves at x_at(bottom), which is the very number x_at(top) gives in the next row: it is kept instead of
   // computed twice. (Edges active from before y_from enter with x_at(y_from), the same number again.)
@@ -203,12 +206,22 @@ template <FillRule R, bool kAvx2, bool kChoose>
       a.size = kept;
     }
     if (x_lo > x_hi) continue;
-    if (narrow) {
-      detail::resolve_narrow_row<R, kAvx2>(y, width, x_lo, x_hi, acc, cov, sink);
-    } else {
+    if (!narrow) {
+      batch.hand_over();
       resolve_row<R, kAvx2>(y, width, x_lo, x_hi, acc, bits, cov, sink);
+      continue;
+    }
+    float* const row_coverage = batch.slot();
+    const float right = detail::sweep_narrow_row<R, kAvx2>(x_lo, x_hi, acc, row_coverage);
+    int from = 0, to = 0;
+    detail::covered_part(row_coverage, x_hi - x_lo + 1, x_lo, width, from, to);
+    if (to > from) batch.add(y, x_lo + from, x_lo + to, row_coverage + from);
+    if (right > 0 && x_hi + 1 < width) {
+      batch.hand_over();
+      sink.span(y, x_hi + 1, width, right);
     }
   }
+  batch.hand_over();
 }
 
 // The row loop compiled for AVX2 (with the AVX2 block for short runs; kChoose: accumulate_piece<kChoose>) and for any
@@ -240,8 +253,10 @@ constexpr int kTrimmedDenseColumns = 24;
 
 template <FillRule R, bool kTrimmed>
 VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns,
-                                     int width, double* block, int* extent, float* cov, CoverageSink& sink) {
+                                     int width, double* block, int* extent, const detail::DenseRowBuffers& out,
+                                     CoverageSink& sink) {
   sink.expect(y_min, y_max, x_base, x_base + columns);
+  detail::RowBatch batch(sink, out.batch, out.coverage, static_cast<std::size_t>(columns));
   const double shift = x_base;
   if constexpr (kTrimmed) {
     for (int r = 0; r < y_max - y_min; ++r) {
@@ -268,6 +283,7 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
   const int visible = std::min(columns, width - x_base);  // the last cells may lie at or right of the image edge
   for (int y = y_min; y < y_max; ++y) {
     double* row = block + static_cast<std::size_t>(y - y_min) * columns;
+    float* const cov = batch.slot();
     double sum = 0;
     int a = 0, b = visible;
     float c;  // the coverage right of the swept cells
@@ -289,19 +305,23 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
     }
     while (a < b && cov[a] == 0) ++a;
     while (b > a && cov[b - 1] == 0) --b;
-    if (b > a) sink.row(y, x_base + a, x_base + b, cov + a);
+    if (b > a) batch.add(y, x_base + a, x_base + b, cov + a);
     // Edges right of the image were dropped, so the sum need not return to 0: it holds to the row's end.
-    if (x_base + columns < width && c > 0) sink.span(y, x_base + columns, width, c);
+    if (x_base + columns < width && c > 0) {
+      batch.hand_over();
+      sink.span(y, x_base + columns, width, c);
+    }
   }
+  batch.hand_over();
 }
 
 template <FillRule R>
 void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns, int width,
-                      double* block, int* extent, float* cov, CoverageSink& sink) {
+                      double* block, int* extent, const detail::DenseRowBuffers& out, CoverageSink& sink) {
   if (columns >= kTrimmedDenseColumns) {
-    sweep_dense_rows<R, true>(edges, y_min, y_max, x_base, columns, width, block, extent, cov, sink);
+    sweep_dense_rows<R, true>(edges, y_min, y_max, x_base, columns, width, block, extent, out, sink);
   } else {
-    sweep_dense_rows<R, false>(edges, y_min, y_max, x_base, columns, width, block, extent, cov, sink);
+    sweep_dense_rows<R, false>(edges, y_min, y_max, x_base, columns, width, block, extent, out, sink);
   }
 }
 
@@ -325,18 +345,25 @@ bool detail::fits_dense(const std::vector<Edge>& edges, int y_min, int y_max, in
   return true;
 }
 
+detail::DenseRowBuffers detail::dense_row_buffers(std::vector<CoverageRow>& batch, std::vector<float>& coverage,
+                                                   int rows, int columns) {
+  const auto slots = static_cast<std::size_t>(std::min(rows, kBatchRows));
+  if (batch.size() < slots) batch.resize(slots);
+  if (coverage.size() < slots * static_cast<std::size_t>(columns)) coverage.resize(slots * static_cast<std::size_t>(columns));
+  return {batch.data(), coverage.data()};
+}
+
 bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink) {
   if (!fits_dense(edges_, y_min_, y_max_, columns, dense_limit_)) return false;
   const std::int64_t cells = static_cast<std::int64_t>(columns) * (y_max_ - y_min_);
   if (dense_block_.size() < static_cast<std::size_t>(cells)) dense_block_.assign(static_cast<std::size_t>(cells), 0.0);
   const auto extents = static_cast<std::size_t>(2 * (y_max_ - y_min_));
   if (dense_extent_.size() < extents) dense_extent_.resize(extents);
-  if (row_coverage_.size() < static_cast<std::size_t>(columns)) row_coverage_.resize(static_cast<std::size_t>(columns));
   double* block = dense_block_.data();
-  float* cov = row_coverage_.data();
+  const DenseRowBuffers out = dense_row_buffers(dense_batch_, row_coverage_, y_max_ - y_min_, columns);
   with_rule(rule, [&](auto r) {
     sweep_dense_rows<decltype(r)::value>(edges_, y_min_, y_max_, x_base, columns, width, block,
-                                         dense_extent_.data(), cov, sink);
+                                         dense_extent_.data(), out, sink);
   });
   return true;
 }
@@ -350,10 +377,10 @@ void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from
   if (s.dense_block.size() < cells) s.dense_block.assign(cells, 0.0);
   const auto extents = static_cast<std::size_t>(2 * (y_to - y_from));
   if (s.dense_extent.size() < extents) s.dense_extent.resize(extents);
-  if (s.coverage.size() < columns) s.coverage.resize(columns);
+  const DenseRowBuffers out = dense_row_buffers(s.batch, s.coverage, y_to - y_from, fill.columns);
   with_rule(fill.rule, [&](auto r) {
     sweep_dense_rows<decltype(r)::value>(fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width,
-                                         s.dense_block.data(), s.dense_extent.data(), s.coverage.data(), *fill.sink);
+                                         s.dense_block.data(), s.dense_extent.data(), out, *fill.sink);
   });
 }
 
@@ -462,8 +489,12 @@ void detail::RasterizerImpl::sweep_analytic_band(const EdgeTableView& table, Fil
   if (s.coverage.size() < padded) s.coverage.resize(padded);
   // An edge whose bottom is at or above the band's top was retired before it (e.y1 > bottom keeps an edge).
   start_active(table, y_from, y_from, s.active);
-  const RowBuffers buffers{s.active, s.columns, s.accumulation.data(), s.touched.data(),
-                           s.coverage.data()};
+  if (s.batch.size() < static_cast<std::size_t>(detail::kBatchRows)) s.batch.resize(detail::kBatchRows);
+  if (s.batch_coverage.size() < static_cast<std::size_t>(detail::kBatchRows * detail::kNarrowRowCoverage)) {
+    s.batch_coverage.resize(detail::kBatchRows * detail::kNarrowRowCoverage);
+  }
+  const RowBuffers buffers{s.active,           s.columns,      s.accumulation.data(), s.touched.data(),
+                           s.coverage.data(),  s.batch.data(), s.batch_coverage.data()};
   with_rule(rule, [&](auto r) {
     constexpr FillRule R = decltype(r)::value;
 #ifdef VRASTER_HAVE_AVX2_KERNELS
