@@ -79,8 +79,8 @@ class CoverageSink {
   /// Pixels [x0, x1) of row y have coverage coverage[0 .. x1-x0) (entries may be 0).
   virtual void row(int y, int x0, int x1, const float* coverage) = 0;
   /// rows[0 .. count) as row() calls, in that order (increasing y, one call per row). The rasterizer hands over the
-  /// short rows of thin shapes so, several at once: a sink that blends pixels can then do a batch in one loop,
-  /// without a call per row (the default makes the row() calls).
+  /// short rows of thin shapes and small fills so, several at once: a sink that blends pixels can then do a batch in
+  /// one loop, without a virtual call per row (the default makes the row() calls).
   virtual void rows(const CoverageRow* rows, std::size_t count) {
     for (std::size_t i = 0; i < count; ++i) row(rows[i].y, rows[i].x0, rows[i].x1, rows[i].coverage);
   }

@@ -56,18 +56,7 @@ void SolidCompositor<T>::row(int y, int x0, int x1, const float* coverage) {
 
 template <class T>
 void SolidCompositor<T>::rows(const CoverageRow* rows, std::size_t count) {
-  if constexpr (sizeof(T) == 1) {
-    if (premul_[3] == 0) return;
-    const std::uint32_t color = packed8_;
-    const auto over_solid = over_solid_;
-    for (std::size_t i = 0; i < count; ++i) {
-      const CoverageRow& r = rows[i];
-      auto* px = reinterpret_cast<std::uint32_t*>(static_cast<void*>(image_.pixel(r.x0, r.y)));
-      over_solid(px, r.x1 - r.x0, r.coverage, 1.f, color);
-    }
-  } else {
-    CoverageSink::rows(rows, count);
-  }
+  for (std::size_t i = 0; i < count; ++i) row(rows[i].y, rows[i].x0, rows[i].x1, rows[i].coverage);  // no virtual call
 }
 
 template <class T>

@@ -139,10 +139,9 @@ template <FillRule R>
   sum = _mm_cvtsd_f64(_mm256_castpd256_pd128(carry));
 }
 
-// A block of four cells of a narrow row (resolve_narrow_row), where every cell outside the row's touched range is
-// zero: the block is swept whole and zeroed by a store of constants. The store's data then does not wait for the
-// cells, so the next row's pieces, which add to the same cells, do not wait for this row's sweep: rows overlap
-// instead of forming one chain through memory (a sliver's rows are a few cells each, and that chain was their cost).
+// A block of four cells of a narrow row (sweep_narrow_row), where every cell outside the row's touched range is
+// zero: the block is swept whole and zeroed by a store of constants (no mask). The store's data then does not wait
+// for the cells, so the next row's pieces, which add to the same cells, need not wait for this row's sweep.
 template <FillRule R>
 [[gnu::target("avx2")]] inline void sweep_zeroed_block_avx2(double* cells, float* cov, double& sum) {
   const __m256d v = _mm256_loadu_pd(cells);
@@ -423,45 +422,11 @@ template <FillRule R, bool kAvx2 = false>
   return coverage_of<R>(sum);
 }
 
-// The pixels of cov[0 .. n) (pixel x_lo + i has cov[i]) that have coverage, as [a, b): zeros trimmed from both ends,
-// and pixels at or right of the image's edge left out.
-inline void covered_part(const float* cov, int n, int x_lo, int width, int& a, int& b) {
-  a = 0;
-  b = std::min(n, width - x_lo);
+// [a, b) narrowed to the part of cov[a .. b) between its first and last nonzero entries (empty when all are zero).
+inline void trim_zeros(const float* cov, int& a, int& b) {
   while (a < b && cov[a] == 0) ++a;
   while (b > a && cov[b - 1] == 0) --b;
 }
-
-// Short rows go to the sink in batches of this many (CoverageSink::rows): a thin shape's rows are a few pixels each,
-// and a call for each row cost about as much as the row's sweep (docs/performance.md).
-constexpr int kBatchRows = 32;
-
-// Rows for CoverageSink::rows, each with a slot of `slot` floats of its own for its coverage (kBatchRows slots).
-// Anything else the sweep hands to the sink goes after hand_over(), so that the calls stay in increasing y.
-class RowBatch {
- public:
-  RowBatch(CoverageSink& sink, CoverageRow* rows, float* coverage, std::size_t slot)
-      : sink_(sink), rows_(rows), coverage_(coverage), slot_(slot) {}
-  /// Where the next row's coverage goes.
-  float* slot() const { return coverage_ + static_cast<std::size_t>(count_) * slot_; }
-  /// Pixels [x0, x1) of row y, coverage from c (in the current slot).
-  void add(int y, int x0, int x1, const float* c) {
-    rows_[count_++] = {y, x0, x1, c};
-    if (count_ == kBatchRows) hand_over();
-  }
-  /// The rows added so far, to the sink.
-  void hand_over() {
-    if (count_ > 0) sink_.rows(rows_, static_cast<std::size_t>(count_));
-    count_ = 0;
-  }
-
- private:
-  CoverageSink& sink_;
-  CoverageRow* rows_;
-  float* coverage_;
-  std::size_t slot_;
-  int count_ = 0;
-};
 
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
 #define VRASTER_CLONES __attribute__((target_clones("avx2", "default")))

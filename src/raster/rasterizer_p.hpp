@@ -107,14 +107,15 @@ struct WorkSums {
 };
 /// The cells [x_base, x_base + columns) that (non-empty) `edges` can write.
 void edge_columns(const std::vector<Edge>& edges, int& x_base, int& columns);
-/// Whether `edges` (rows [y_min, y_max), `columns` columns) take the dense sweep: small paths, a few thousand cells.
-/// Where a dense sweep puts its rows for the sink (CoverageSink::rows): the batch, and a slot of coverage for each.
-struct DenseRowBuffers {
+/// Where a sweep puts its rows for the sink (CoverageSink::rows, cells.hpp's RowBatch): the batch, and a slot of
+/// coverage for each row.
+struct RowBatchBuffers {
   CoverageRow* batch;
-  float* coverage;  // columns floats per slot
+  float* coverage;  // `slot` floats per row
 };
-/// Sizes `batch` and `coverage` for a dense sweep of `rows` rows of `columns` cells (kBatchRows rows at most at once).
-DenseRowBuffers dense_row_buffers(std::vector<CoverageRow>& batch, std::vector<float>& coverage, int rows, int columns);
+/// Sizes `batch` and `coverage` for batches of up to `rows` rows (kBatchRows at most) of `slot` floats each.
+RowBatchBuffers row_batch_buffers(std::vector<CoverageRow>& batch, std::vector<float>& coverage, int rows, int slot);
+/// Whether `edges` (rows [y_min, y_max), `columns` columns) take the dense sweep: small paths, a few thousand cells.
 bool fits_dense(const std::vector<Edge>& edges, int y_min, int y_max, int columns, std::int64_t dense_limit);
 
 /// Crossings of `edges` (clipped to rows [0, height)) inside pixel rows: per row, the pairs of edges whose x order

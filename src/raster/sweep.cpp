@@ -33,6 +33,37 @@ using detail::with_rule;
 // from the active edges kept as columns (leave_row; a branch per edge on whether it ends in the row was
 // mispredicted often enough to cost stars a quarter of their time), then the pieces one by one, then the edges that
 // end are dropped.
+// Short rows go to the sink in batches of this many (CoverageSink::rows): a thin shape's rows are a few pixels each,
+// and a call for each row cost about as much as the row's sweep (docs/performance.md).
+constexpr int kBatchRows = 32;
+
+// Rows for CoverageSink::rows, each with a slot of `slot` floats of its own for its coverage (kBatchRows slots).
+// Anything else the sweep hands to the sink goes after hand_over(), so that the calls stay in increasing y.
+class RowBatch {
+ public:
+  RowBatch(CoverageSink& sink, const detail::RowBatchBuffers& buffers, std::size_t slot)
+      : sink_(sink), rows_(buffers.batch), coverage_(buffers.coverage), slot_(slot) {}
+  /// Where the next row's coverage goes.
+  float* slot() const { return coverage_ + static_cast<std::size_t>(count_) * slot_; }
+  /// Pixels [x0, x1) of row y, coverage from c (in the current slot).
+  void add(int y, int x0, int x1, const float* c) {
+    rows_[count_++] = {y, x0, x1, c};
+    if (count_ == kBatchRows) hand_over();
+  }
+  /// The rows added so far, to the sink.
+  void hand_over() {
+    if (count_ > 0) sink_.rows(rows_, static_cast<std::size_t>(count_));
+    count_ = 0;
+  }
+
+ private:
+  CoverageSink& sink_;
+  CoverageRow* rows_;
+  float* coverage_;
+  std::size_t slot_;
+  int count_ = 0;
+};
+
 // A row with at least one active edge per this many pixels of the image's width is crowded (below).
 constexpr std::size_t kCrowdedCellsPerEdge = 4;
 
@@ -43,8 +74,7 @@ struct RowBuffers {
   double* acc;
   std::uint64_t* bits;
   float* cov;
-  CoverageRow* batch;     // narrow rows waiting for the sink (detail::kBatchRows)
-  float* batch_coverage;  // their coverage, kNarrowRowCoverage floats a row
+  detail::RowBatchBuffers batch;  // the narrow rows waiting for the sink, kNarrowRowCoverage floats a row
 };
 
 // Whether a fill's edges are short (on average under kLongEdgeRows rows, judged on up to 256 of them). Pieces of
@@ -132,7 +162,7 @@ template <FillRule R, bool kAvx2, bool kChoose>
   double* const acc = b.acc;
   std::uint64_t* const bits = b.bits;
   float* const cov = b.cov;
-  detail::RowBatch batch(sink, b.batch, b.batch_coverage, detail::kNarrowRowCoverage);  // the narrow rows
+  RowBatch batch(sink, b.batch, detail::kNarrowRowCoverage);  // the narrow rows
   // a.x[k]: where active edge k enters the current row (its x at max(y0, row top)). An edge that goes on below the
   // row leaves at x_at(bottom), which is the very number x_at(top) gives in the next row: it is kept instead of
   // computed twice. (Edges active from before y_from enter with x_at(y_from), the same number again.)
@@ -213,8 +243,8 @@ template <FillRule R, bool kAvx2, bool kChoose>
     }
     float* const row_coverage = batch.slot();
     const float right = detail::sweep_narrow_row<R, kAvx2>(x_lo, x_hi, acc, row_coverage);
-    int from = 0, to = 0;
-    detail::covered_part(row_coverage, x_hi - x_lo + 1, x_lo, width, from, to);
+    int from = 0, to = std::min(x_hi - x_lo + 1, width - x_lo);  // pixels at or right of the image's edge left out
+    detail::trim_zeros(row_coverage, from, to);
     if (to > from) batch.add(y, x_lo + from, x_lo + to, row_coverage + from);
     if (right > 0 && x_hi + 1 < width) {
       batch.hand_over();
@@ -253,10 +283,10 @@ constexpr int kTrimmedDenseColumns = 24;
 
 template <FillRule R, bool kTrimmed>
 VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns,
-                                     int width, double* block, int* extent, const detail::DenseRowBuffers& out,
+                                     int width, double* block, int* extent, const detail::RowBatchBuffers& out,
                                      CoverageSink& sink) {
   sink.expect(y_min, y_max, x_base, x_base + columns);
-  detail::RowBatch batch(sink, out.batch, out.coverage, static_cast<std::size_t>(columns));
+  RowBatch batch(sink, out, static_cast<std::size_t>(columns));
   const double shift = x_base;
   if constexpr (kTrimmed) {
     for (int r = 0; r < y_max - y_min; ++r) {
@@ -303,8 +333,7 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
       detail::sweep_cells<R>(row, cov, columns, sum);
       c = coverage_of<R>(sum);
     }
-    while (a < b && cov[a] == 0) ++a;
-    while (b > a && cov[b - 1] == 0) --b;
+    detail::trim_zeros(cov, a, b);
     if (b > a) batch.add(y, x_base + a, x_base + b, cov + a);
     // Edges right of the image were dropped, so the sum need not return to 0: it holds to the row's end.
     if (x_base + columns < width && c > 0) {
@@ -317,7 +346,7 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
 
 template <FillRule R>
 void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns, int width,
-                      double* block, int* extent, const detail::DenseRowBuffers& out, CoverageSink& sink) {
+                      double* block, int* extent, const detail::RowBatchBuffers& out, CoverageSink& sink) {
   if (columns >= kTrimmedDenseColumns) {
     sweep_dense_rows<R, true>(edges, y_min, y_max, x_base, columns, width, block, extent, out, sink);
   } else {
@@ -345,11 +374,11 @@ bool detail::fits_dense(const std::vector<Edge>& edges, int y_min, int y_max, in
   return true;
 }
 
-detail::DenseRowBuffers detail::dense_row_buffers(std::vector<CoverageRow>& batch, std::vector<float>& coverage,
-                                                   int rows, int columns) {
+detail::RowBatchBuffers detail::row_batch_buffers(std::vector<CoverageRow>& batch, std::vector<float>& coverage,
+                                                   int rows, int slot) {
   const auto slots = static_cast<std::size_t>(std::min(rows, kBatchRows));
   if (batch.size() < slots) batch.resize(slots);
-  if (coverage.size() < slots * static_cast<std::size_t>(columns)) coverage.resize(slots * static_cast<std::size_t>(columns));
+  if (coverage.size() < slots * static_cast<std::size_t>(slot)) coverage.resize(slots * static_cast<std::size_t>(slot));
   return {batch.data(), coverage.data()};
 }
 
@@ -360,7 +389,7 @@ bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, i
   const auto extents = static_cast<std::size_t>(2 * (y_max_ - y_min_));
   if (dense_extent_.size() < extents) dense_extent_.resize(extents);
   double* block = dense_block_.data();
-  const DenseRowBuffers out = dense_row_buffers(dense_batch_, row_coverage_, y_max_ - y_min_, columns);
+  const RowBatchBuffers out = row_batch_buffers(dense_batch_, row_coverage_, y_max_ - y_min_, columns);
   with_rule(rule, [&](auto r) {
     sweep_dense_rows<decltype(r)::value>(edges_, y_min_, y_max_, x_base, columns, width, block,
                                          dense_extent_.data(), out, sink);
@@ -377,7 +406,7 @@ void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from
   if (s.dense_block.size() < cells) s.dense_block.assign(cells, 0.0);
   const auto extents = static_cast<std::size_t>(2 * (y_to - y_from));
   if (s.dense_extent.size() < extents) s.dense_extent.resize(extents);
-  const DenseRowBuffers out = dense_row_buffers(s.batch, s.coverage, y_to - y_from, fill.columns);
+  const RowBatchBuffers out = row_batch_buffers(s.batch, s.coverage, y_to - y_from, fill.columns);
   with_rule(fill.rule, [&](auto r) {
     sweep_dense_rows<decltype(r)::value>(fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width,
                                          s.dense_block.data(), s.dense_extent.data(), out, *fill.sink);
@@ -489,12 +518,9 @@ void detail::RasterizerImpl::sweep_analytic_band(const EdgeTableView& table, Fil
   if (s.coverage.size() < padded) s.coverage.resize(padded);
   // An edge whose bottom is at or above the band's top was retired before it (e.y1 > bottom keeps an edge).
   start_active(table, y_from, y_from, s.active);
-  if (s.batch.size() < static_cast<std::size_t>(detail::kBatchRows)) s.batch.resize(detail::kBatchRows);
-  if (s.batch_coverage.size() < static_cast<std::size_t>(detail::kBatchRows * detail::kNarrowRowCoverage)) {
-    s.batch_coverage.resize(detail::kBatchRows * detail::kNarrowRowCoverage);
-  }
-  const RowBuffers buffers{s.active,           s.columns,      s.accumulation.data(), s.touched.data(),
-                           s.coverage.data(),  s.batch.data(), s.batch_coverage.data()};
+  const RowBuffers buffers{s.active,          s.columns,         s.accumulation.data(), s.touched.data(),
+                           s.coverage.data(), row_batch_buffers(s.batch, s.batch_coverage, kBatchRows,
+                                                                 detail::kNarrowRowCoverage)};
   with_rule(rule, [&](auto r) {
     constexpr FillRule R = decltype(r)::value;
 #ifdef VRASTER_HAVE_AVX2_KERNELS
