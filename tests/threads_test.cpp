@@ -530,6 +530,44 @@ TEST(Threads, QueueWaitsForFlushAndSmallFillsAreDrawnAtOnce) {
   EXPECT_FALSE(recorder.rows.empty());
 }
 
+// A frame of many medium fills (none large enough to start a queue alone) is drawn at once only until the fills so
+// drawn add up to a few thousand units of work; then the fills wait in a queue that flush() shares among the threads.
+// Glyph-sized fills never start one (queuing would cost them more than they win). The pixels are those of one thread.
+TEST(Threads, AFrameOfManyMediumFillsStartsAQueue) {
+  auto triangle = [](double x, double y, double size) {
+    Path p;
+    p.move_to({x, y});
+    p.line_to({x + size, y + 0.3 * size});
+    p.line_to({x + 0.4 * size, y + size});
+    p.close();
+    return p;
+  };
+  for (const double size : {50.0, 6.0}) {
+    Image one(kSide, kSide), many(kSide, kSide);
+    one.clear(Color{1, 1, 1, 1});
+    many.clear(Color{1, 1, 1, 1});
+    Renderer single, threaded;
+    threaded.set_threads(2);
+    std::size_t first_queued = 0;  // the index of the first fill that waited, plus one (0: none waited)
+    for (int i = 0; i < 200; ++i) {
+      const Path p = triangle((i * 37) % (kSide - 60) + 0.25, (i * 53) % (kSide - 60) + 0.5, size);
+      const Color c{0.004f * static_cast<float>(i), 0.5f, 1.0f - 0.004f * static_cast<float>(i), 0.6f};
+      single.fill(one, p, Affine{}, c, FillOptions{});
+      threaded.fill(many, p, Affine{}, c, FillOptions{});
+      if (first_queued == 0 && threaded.rasterizer().queued_fills() > 0) first_queued = static_cast<std::size_t>(i) + 1;
+    }
+    threaded.flush();
+    if (size > 10) {
+      EXPECT_GT(first_queued, 1u) << "the first fills are drawn at once";
+      EXPECT_LT(first_queued, 50u) << "the rest wait in a queue";
+      EXPECT_GT(threaded.rasterizer().last_flush_bands(), 1);
+    } else {
+      EXPECT_EQ(first_queued, 0u) << "glyph-sized fills are drawn at once";
+    }
+    EXPECT_TRUE(one.data == many.data) << "size " << size;
+  }
+}
+
 // set_threads and the destructor run what is queued; a queue past its memory budget runs by itself. Every case
 // gives the pixels of one thread.
 TEST(Threads, QueueRunsOnSetThreadsDestructionAndMemoryBudget) {

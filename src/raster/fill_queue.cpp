@@ -2,7 +2,7 @@
 //
 //   1. fill_queued, on the caller's thread: flatten (the caller), then the polylines are copied into a QueuedFill
 //      (a rectangle's few distinct rows are computed at once into a CoverageRecording instead). Small fills with
-//      nothing queued before them are drawn at once.
+//      nothing queued before them are drawn at once, until enough of them in a row show a frame of many.
 //   2. flush, first fork and join: the queued fills' edges and edge tables are built, fills shared out among the
 //      caller and the workers (building them on the caller alone held the other threads idle for a tenth of a
 //      frame of curves)
@@ -24,17 +24,25 @@
 namespace vraster::detail {
 namespace {
 
-// Bands of the whole queue: two per thread, cut at equal shares of the estimated work (flush). Every band costs each
-// fill crossing it a start from cold edges and tables, so few bands pay: with two threads, two bands per thread
-// measured thin_slivers 1.66x and cubic_256 1.73x, eight bands per thread cut by rows 1.46x and 1.64x (docs/
-// performance.md, "Threads"). Two rather than one, so that a thread the system preempts holds less back.
-constexpr int kQueueBandsPerThread = 2;
+// Bands of the whole queue (flush): rounds of one band per thread, each round's bands half the estimated work of the
+// previous round's, so the last bands are small and a thread that finishes early (the estimate is only an estimate,
+// and the host may preempt a thread) waits for little: with equal shares a thread was idle for 13-26 % of the
+// queue's time at the end. Every band costs each fill crossing it a start from cold edges and tables, so the bands
+// are few: four rounds, eight bands on two threads (docs/performance.md, "Threads").
+constexpr int kQueueRounds = 4;
 constexpr int kQueueMinBandRows = 8;
 // A fill of less work than this (band_work's units, about 10 ns each; the threshold of banding a fill alone) is
 // drawn at once on the caller's thread when nothing is queued: queued, a small fill costs 5-15 % more on one
 // thread (its edges are stored and read back cold, its sink copied), which a frame of small fills only would not
 // win back. Once a large fill has started a queue, small ones join it (the order must hold).
 constexpr double kMinQueuedFillWork = 800;
+// Small fills start a queue too once fills drawn at once since the last flush add up to this much work: the frame
+// is evidently made of many of them (1,000 polygons of 32 px), and a queue shares them out among the threads...
+constexpr double kWorkDrawnBeforeQueue = 3200;
+// ...but only a fill of at least this much: queuing costs a fill some 300-500 ns (its outline copied, its sink
+// cloned, its edges stored and read back cold), more than glyph-sized fills (about 1 us each) win back on two
+// threads.
+constexpr double kMinWorkToStartQueue = 200;
 // Recorded fills: composited pixels per unit of work, as band_work counts the area inside.
 constexpr double kRecordedPixelsPerUnit = 16;
 // Memory the queue may hold (outlines, edge tables and recordings) before fill_queued runs it.
@@ -106,20 +114,26 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
   q.aa = aa;
   q.width = width;
   q.recording.clear();
-  // The choices of fill(), made now. A small fill with nothing queued before it is drawn at once.
+  // The choices of fill(), made now. A small fill with nothing queued before it is drawn at once (unless it starts a
+  // queue for a frame of many small fills, above).
+  auto at_once = [&](double work) {
+    if (queued_ > 0 || work >= kMinQueuedFillWork) return false;
+    if (drawn_at_once_ >= kWorkDrawnBeforeQueue && work >= kMinWorkToStartQueue) return false;
+    drawn_at_once_ += work;
+    return true;
+  };
   bool recorded = fill_rect(lines, rule, aa, width, height, q.recording);
-  if (recorded && queued_ == 0 &&
-      static_cast<double>(q.recording.pixels()) / kRecordedPixelsPerUnit < kMinQueuedFillWork) {
+  if (recorded && at_once(static_cast<double>(q.recording.pixels()) / kRecordedPixelsPerUnit)) {
     q.recording.replay(q.recording.y_min(), q.recording.y_max(), sink);
     return;
   }
   bool prebuilt = false;
   if (!recorded && queued_ == 0) {
     // Nothing queued: the edges are built now, with the estimate taken on the way (no pass over the outline of
-    // its own, which cost a small fill 5 % more than drawing it without threads). A small fill is drawn at once; a
-    // large one starts the queue with these edges.
+    // its own, which cost a small fill 5 % more than drawing it without threads). A small fill is drawn at once (at_once); a
+    // fill that starts the queue keeps these edges.
     detail::build_edges(lines, width, height, edges_, y_min_, y_max_, &q.work);
-    if (q.work < kMinQueuedFillWork) {
+    if (at_once(q.work)) {
       if (!edges_.empty()) sweep_edges(rule, aa, width, sink);
       return;
     }
@@ -231,6 +245,7 @@ void RasterizerImpl::run_queued_band(int band, BandScratch& s) {
 }
 
 void RasterizerImpl::flush() {
+  drawn_at_once_ = 0;  // a flush ends a frame, or a stretch of drawing the queue cannot hold
   if (queued_ == 0) return;
   // First the edges of the fills that wait unbuilt: chunks of consecutive fills on the pool's threads.
   auto build = [&](std::size_t from, std::size_t to, BandScratch& s) {
@@ -263,15 +278,12 @@ void RasterizerImpl::flush() {
     return;
   }
   const int rows = bottom - top;
-  int bands = 1;
-  if (pool_ && queued_work_ >= kMinQueuedFillWork) {  // (a fill of this much would be banded alone)
-    bands = std::clamp(std::min(pool_->threads() * kQueueBandsPerThread, rows / kQueueMinBandRows), 1,
-                       BandPool::kMaxBands);
-  }
-  // Band tops at equal shares of the queue's work (each fill's estimate spread evenly over its rows): where fills
-  // crowd, bands are thinner, so that few bands balance the threads.
+  // Rounds of bands (kQueueRounds; fewer where the rows are too few), cut at shares of the queue's work, each fill's
+  // estimate spread evenly over its rows: where fills crowd, bands are thinner.
   band_top_.assign(1, top);
-  if (bands > 1) {
+  const int threads = pool_ ? pool_->threads() : 1;
+  const int rounds = std::min({kQueueRounds, rows / (kQueueMinBandRows * threads), BandPool::kMaxBands / threads});
+  if (threads > 1 && queued_work_ >= kMinQueuedFillWork && rounds >= 1) {  // (a fill of this much is banded alone)
     row_work_.assign(static_cast<std::size_t>(rows) + 1, 0.0);
     for (std::size_t i = 0; i < queued_; ++i) {
       const QueuedFill& q = queue_[i];
@@ -286,15 +298,24 @@ void RasterizerImpl::flush() {
       total += std::max(density, 0.0);
       row_work_[static_cast<std::size_t>(r)] = total;
     }
-    for (int r = 0, b = 1; r + 1 < rows && b < bands; ++r) {
-      if (row_work_[static_cast<std::size_t>(r)] >= total * b / bands) {
+    // Band b ends where the work above reaches band_cuts_[b]: the bands of round k hold 2^-k of a first-round band's.
+    band_cuts_.clear();
+    const double first_round = total / (threads * (2.0 - std::ldexp(1.0, 1 - rounds)));  // sum of 2^-k, k < rounds
+    double at = 0;
+    for (int k = 0; k < rounds; ++k) {
+      for (int t = 0; t < threads; ++t) band_cuts_.push_back(at += std::ldexp(first_round, -k));
+    }
+    band_cuts_.back() = total;  // (round-off)
+    std::size_t b = 0;
+    for (int r = 0; r + 1 < rows && b + 1 < band_cuts_.size(); ++r) {
+      if (row_work_[static_cast<std::size_t>(r)] >= band_cuts_[b]) {
         band_top_.push_back(top + r + 1);
-        while (b < bands && row_work_[static_cast<std::size_t>(r)] >= total * b / bands) ++b;
+        while (b + 1 < band_cuts_.size() && row_work_[static_cast<std::size_t>(r)] >= band_cuts_[b]) ++b;
       }
     }
   }
   band_top_.push_back(bottom);
-  bands = static_cast<int>(band_top_.size()) - 1;
+  const int bands = static_cast<int>(band_top_.size()) - 1;
   last_flush_bands_ = bands;
   // Each band's list of the fills crossing it, in queue order (a band never looks at the others).
   auto bands_of = [&](const QueuedFill& q, std::size_t& first, std::size_t& last) {

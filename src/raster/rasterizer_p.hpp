@@ -289,8 +289,10 @@ class RasterizerImpl {
   std::size_t queued_ = 0;
   std::size_t queued_bytes_ = 0;
   double queued_work_ = 0;
+  double drawn_at_once_ = 0;  // work of the small fills fill_queued drew at once since the last flush
   std::vector<int> band_top_;                // flush: the first row of every band, and the end of the last
   std::vector<double> row_work_;             // flush: the queue's work summed row by row
+  std::vector<double> band_cuts_;            // flush: the work above each band's bottom
   std::vector<std::uint32_t> band_first_;    // flush: band b runs entries band_entries_[band_first_[b] .. [b + 1])
   std::vector<std::uint32_t> band_entries_;
   void run_queued_band(int band, BandScratch& s);
