@@ -40,9 +40,9 @@ constexpr double kMinQueuedFillWork = 800;
 // is evidently made of many of them (1,000 polygons of 32 px), and a queue shares them out among the threads...
 constexpr double kWorkDrawnBeforeQueue = 3200;
 // ...but only a fill of at least this much: queuing costs a fill some 300-500 ns (its outline copied, its sink
-// cloned, its edges stored and read back cold), more than glyph-sized fills (about 1 us each) win back on two
-// threads.
-constexpr double kMinWorkToStartQueue = 200;
+// cloned, its edges stored and read back cold), more than glyph-sized fills (under 1 us, 30-70 units) win back on
+// two threads. (200 left polygons of 16 px, about 100 units, on one thread; 100 gives them 1.15-1.33x.)
+constexpr double kMinWorkToStartQueue = 100;
 // Recorded fills: composited pixels per unit of work, as band_work counts the area inside.
 constexpr double kRecordedPixelsPerUnit = 16;
 // Memory the queue may hold (outlines, edge tables and recordings) before fill_queued runs it.
