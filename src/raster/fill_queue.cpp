@@ -116,6 +116,7 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
   q.recording.clear();
   // The choices of fill(), made now. A small fill with nothing queued before it is drawn at once (unless it starts a
   // queue for a frame of many small fills, above).
+  // Whether a fill of this much work is drawn at once; if so, it counts towards the frame's drawn_at_once_.
   auto at_once = [&](double work) {
     if (queued_ > 0 || work >= kMinQueuedFillWork) return false;
     if (drawn_at_once_ >= kWorkDrawnBeforeQueue && work >= kMinWorkToStartQueue) return false;
@@ -130,8 +131,8 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
   bool prebuilt = false;
   if (!recorded && queued_ == 0) {
     // Nothing queued: the edges are built now, with the estimate taken on the way (no pass over the outline of
-    // its own, which cost a small fill 5 % more than drawing it without threads). A small fill is drawn at once (at_once); a
-    // fill that starts the queue keeps these edges.
+    // its own, which cost a small fill 5 % more than drawing it without threads). A small fill is drawn at once
+    // (at_once); a fill that starts the queue keeps these edges.
     detail::build_edges(lines, width, height, edges_, y_min_, y_max_, &q.work);
     if (at_once(q.work)) {
       if (!edges_.empty()) sweep_edges(rule, aa, width, sink);
