@@ -3,6 +3,7 @@
 // the row's end) and self-intersecting ones.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "support/capture.hpp"
@@ -90,6 +91,42 @@ TEST(DenseSweep, MatchesTheRowSweepOnWideBlocksWithMarginsAndEmptyRows) {
     if (HasFailure()) return;
   }
   EXPECT_EQ(compared, 1000);
+}
+
+// Wide rows of the row sweep: pieces close together (a self-intersecting polygon's, a zigzag's) are swept as one run
+// from the row's first touched cell to its last, pieces far apart (the two sides of a disc) run by run with constant
+// spans between them. Both must give the dense sweep's coverage, on shapes whose rows have both kinds, some leaving
+// the image on the right.
+TEST(DenseSweep, MatchesTheRowSweepOnWideRowsWithPiecesCloseTogetherAndFarApart) {
+  std::mt19937 rng(4321);
+  int compared = 0;
+  for (int it = 0; it < 24; ++it) {
+    const int w = 160 + static_cast<int>(rng() % 120), h = 60 + static_cast<int>(rng() % 60);
+    std::uniform_real_distribution<double> x_of(-10, w + (it % 3 == 0 ? 60 : 10)), y_of(-5, h + 5);
+    Path path;
+    // A random ten-vertex polygon: rows with several crossings a few cells apart.
+    path.move_to(x_of(rng), y_of(rng));
+    for (int i = 1; i < 10; ++i) path.line_to(x_of(rng), y_of(rng));
+    path.close();
+    // A disc: rows with two pieces a hundred cells apart.
+    const double cx = x_of(rng), cy = y_of(rng), r = 40 + static_cast<double>(rng() % 30);
+    path.move_to(cx + r, cy);
+    for (int i = 1; i < 64; ++i) {
+      const double t = 6.283185307179586 * i / 64;
+      path.line_to(cx + r * std::cos(t), cy + r * std::sin(t));
+    }
+    path.close();
+    // A zigzag band: many pieces two or three cells apart.
+    const double zx = x_of(rng), zy = y_of(rng);
+    path.move_to(zx, zy);
+    for (int i = 1; i <= 30; ++i) path.line_to(zx + 2.5 * i, zy + (i % 2 == 0 ? 0 : 25));
+    path.line_to(zx + 75, zy + 35);
+    path.line_to(zx, zy + 35);
+    path.close();
+    compared += compare_every_rule(path, w, h, it);
+    if (HasFailure()) return;
+  }
+  EXPECT_EQ(compared, 120);
 }
 
 TEST(DenseSweep, WindingOfAShapeLeavingTheImageOnTheRightHoldsToTheRowEnd) {

@@ -64,8 +64,12 @@ class RowBatch {
   int count_ = 0;
 };
 
-// A row with at least one active edge per this many pixels of the image's width is crowded (below).
-constexpr std::size_t kCrowdedCellsPerEdge = 4;
+// A row whose pieces lie within this many cells per active edge is swept as one run from its first touched cell to
+// its last (below), the untouched stretches between pieces included: one sweep and one compositor call instead of a
+// search for runs, a sweep, a span and a call per piece. So are crowded rows (a star with hundreds of crossings per
+// row) and self-intersecting polygons and curves (9-17% faster, docs/performance.md); rows whose pieces lie farther
+// apart (the two sides of a circle) keep their long untouched stretches as constant spans.
+constexpr std::size_t kWholeRunCellsPerEdge = 32;
 
 // A band's row buffers (BandScratch's, sized for the row with kRowPadding).
 struct RowBuffers {
@@ -195,10 +199,6 @@ template <FillRule R, bool kAvx2, bool kChoose>
     {
       all_go_on = leave_row(a, 0, top, bottom);
     }
-    // A crowded row (pieces for a good share of its cells, as in a star with hundreds of crossings per row): its
-    // cells are marked touched all at once from x_lo to x_hi instead of piece by piece, and swept in one run. The
-    // test depends on the row's own edges only, so a band or a queued fill decides every row as a whole sweep does.
-    const bool crowded = n * kCrowdedCellsPerEdge >= static_cast<std::size_t>(width);
     const double* const xs = a.x.data();
     const double* const xbs = a.xb.data();
     const double* const hs = a.h.data();
@@ -210,10 +210,12 @@ template <FillRule R, bool kAvx2, bool kChoose>
       x_hi = std::max(x_hi, piece_last_cell(xa, xb));
     }
     // A wide row's touched cells are marked now, while the columns still hold the row's pieces (the pieces' cells
-    // again, rather than noted piece by piece: most rows are narrow and need none).
+    // again, rather than noted piece by piece: most rows are narrow and need none). A row with pieces close together
+    // is marked touched all at once from x_lo to x_hi and swept in one run. Both tests depend on the row's own edges
+    // only, so a band or a queued fill decides every row as a whole sweep does.
     const bool narrow = x_hi - x_lo < detail::kNarrowRowCells;
     if (x_lo <= x_hi && !narrow) {
-      if (crowded) {
+      if (static_cast<std::size_t>(x_hi - x_lo) <= kWholeRunCellsPerEdge * n) {
         mark_cells(bits, x_lo, x_hi);
       } else {
         for (std::size_t k = 0; k < n; ++k) {
