@@ -3,7 +3,6 @@
 // the row's end) and self-intersecting ones.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <random>
 
 #include "support/capture.hpp"
@@ -109,13 +108,8 @@ TEST(DenseSweep, MatchesTheRowSweepOnWideRowsWithPiecesCloseTogetherAndFarApart)
     for (int i = 1; i < 10; ++i) path.line_to(x_of(rng), y_of(rng));
     path.close();
     // A disc: rows with two pieces a hundred cells apart.
-    const double cx = x_of(rng), cy = y_of(rng), r = 40 + static_cast<double>(rng() % 30);
-    path.move_to(cx + r, cy);
-    for (int i = 1; i < 64; ++i) {
-      const double t = 6.283185307179586 * i / 64;
-      path.line_to(cx + r * std::cos(t), cy + r * std::sin(t));
-    }
-    path.close();
+    const double cx = x_of(rng), cy = y_of(rng);
+    path.add_circle({cx, cy}, 40 + static_cast<double>(rng() % 30));
     // A zigzag band: many pieces two or three cells apart.
     const double zx = x_of(rng), zy = y_of(rng);
     path.move_to(zx, zy);
