@@ -336,5 +336,92 @@ TEST(AccumulatePiece, Avx2WholeCellsAddTheSameNumbers) {
 #endif
 }
 
+
+// trim_zeros passes zeros four at a time where it can: it must give the bounds of a one-by-one scan on every pattern
+// of zeros, with -0 counting as zero and NaN as nonzero, from every start on the sweep's block grid.
+TEST(TrimZeros, GivesTheBoundsOfAOneByOneScanOnEveryPatternOfZeros) {
+  constexpr int kLength = 16;
+  const float nonzero_values[] = {0.5f, 1e-30f, std::numeric_limits<float>::quiet_NaN()};
+  int trimmed_both_ends = 0;
+  for (int pattern = 0; pattern < (1 << kLength); ++pattern) {
+    float cov[kLength + 4];
+    for (int i = 0; i < kLength + 4; ++i) {
+      cov[i] = (pattern >> (i % kLength)) & 1 ? nonzero_values[(i + pattern) % 3] : (i % 2 ? -0.0f : 0.0f);
+    }
+    for (int a0 = 0; a0 <= 8; a0 += 4) {
+      for (int b0 = a0; b0 <= kLength; ++b0) {
+        int ref_a = a0, ref_b = b0;
+        while (ref_a < ref_b && cov[ref_a] == 0) ++ref_a;
+        while (ref_b > ref_a && cov[ref_b - 1] == 0) --ref_b;
+        int a = a0, b = b0;
+        detail::trim_zeros(cov, a, b);
+        if (ref_b > ref_a) {
+          ASSERT_EQ(a, ref_a) << "pattern " << pattern << " [" << a0 << ", " << b0 << ")";
+          ASSERT_EQ(b, ref_b) << "pattern " << pattern << " [" << a0 << ", " << b0 << ")";
+          trimmed_both_ends += ref_a >= a0 + 4 && ref_b <= b0 - 4;
+        } else {
+          ASSERT_LE(b, a) << "pattern " << pattern << " [" << a0 << ", " << b0 << ") is all zeros";
+        }
+      }
+    }
+  }
+  EXPECT_GT(trimmed_both_ends, 100);  // the four-at-a-time steps ran at both ends
+}
+
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+template <FillRule R>
+[[gnu::target("avx2")]] float sweep_narrow_row_avx2(int x_lo, int x_hi, double* acc, float* cov,
+                                                    std::uint32_t& nonzero) {
+  return detail::sweep_narrow_row<R, true>(x_lo, x_hi, acc, cov, nonzero);
+}
+#endif
+
+// A narrow row's sweep reports which of its pixels have coverage (the row is trimmed to them): bit i must be set
+// exactly where cov[i] != 0, for i below the row's length, with and without AVX2, and both must give the same
+// coverage and leave the cells zero.
+TEST(NarrowRowSweep, NonzeroBitsAreThePixelsWithCoverage) {
+  std::mt19937 rng(2028);
+  std::uniform_real_distribution<double> unit(0, 1);
+  constexpr int kRow = 64 + detail::kRowPadding;
+  int partly_zero = 0;
+  for (int row = 0; row < 4000; ++row) {
+    const int x_lo = static_cast<int>(rng() % 16), n = 1 + static_cast<int>(rng() % detail::kNarrowRowCells);
+    const int x_hi = x_lo + n - 1;
+    double portable[kRow] = {}, fast[kRow] = {};
+    const int pieces = 1 + static_cast<int>(rng() % 4);
+    // Pieces mostly in pairs of opposite winding (a closed shape's two sides), some alone (a shape that goes on
+    // right of the image, whose coverage goes on past the row's last cell), kept inside [x_lo, x_hi - 1] so that
+    // the cells they touch stay within the row.
+    const bool paired = rng() % 4 != 0;
+    for (int p = 0; p < pieces; ++p) {
+      const double h = (rng() % 2 ? 1.0 : -1.0) * (rng() % 3 == 0 ? 1.0 : unit(rng));
+      for (int side = 0; side < (paired ? 2 : 1); ++side) {
+        const double sign = side == 0 ? 1.0 : -1.0;
+        const double xa = x_lo + unit(rng) * (n - 1), xb = x_lo + unit(rng) * (n - 1);
+        detail::accumulate_piece(portable, xa, xb, sign * h);
+        detail::accumulate_piece(fast, xa, xb, sign * h);
+      }
+    }
+    float cov[detail::kNarrowRowCoverage + 4], cov_fast[detail::kNarrowRowCoverage + 4];
+    std::uint32_t bits = 0, bits_fast = 0;
+    const float right = detail::sweep_narrow_row<FillRule::EvenOdd>(x_lo, x_hi, portable, cov, bits);
+    for (int i = 0; i < 32; ++i) {
+      ASSERT_EQ((bits >> i) & 1, i < n && cov[i] != 0 ? 1u : 0u) << "row " << row << " pixel " << i;
+    }
+    partly_zero += bits != 0 && bits != (n < 32 ? (1u << n) - 1 : ~0u);
+    for (const double cell : portable) ASSERT_EQ(cell, 0.0);
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+    if (__builtin_cpu_supports("avx2")) {
+      const float right_fast = sweep_narrow_row_avx2<FillRule::EvenOdd>(x_lo, x_hi, fast, cov_fast, bits_fast);
+      ASSERT_EQ(bits_fast, bits) << "row " << row;
+      ASSERT_EQ(right_fast, right) << "row " << row;
+      for (int i = 0; i < n; ++i) ASSERT_EQ(cov_fast[i], cov[i]) << "row " << row << " pixel " << i;
+      for (const double cell : fast) ASSERT_EQ(cell, 0.0);
+    }
+#endif
+  }
+  EXPECT_GT(partly_zero, 1000);
+}
+
 }  // namespace
 }  // namespace vraster::test

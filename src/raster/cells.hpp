@@ -73,6 +73,17 @@ inline void sweep_cells_scalar(double* cells, float* cov, int n, double& sum) {
 }
 
 #ifdef VRASTER_HAVE_AVX2_KERNELS
+// Four cells the row's pieces have just written, one double at a time: read as two halves of two doubles each, each
+// double its own load. One 32-byte load of cells written by separate 8-byte stores moments before cannot take their
+// data from the store queue and waits until the stores reach the cache (perf put a fifth of a thin shape's row loop
+// on that wait); a load of one double takes it from its store.
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d load_fresh_cells(const double* cells) {
+  __m128d lo = _mm_load_sd(cells), hi = _mm_load_sd(cells + 2);
+  asm("" : "+x"(lo), "+x"(hi));  // keeps GCC from merging the loads into wider ones
+  lo = _mm_loadh_pd(lo, cells + 1);
+  hi = _mm_loadh_pd(hi, cells + 3);
+  return _mm256_insertf128_pd(_mm256_castpd128_pd256(lo), hi, 1);
+}
 // rule_coverage on four sums. std::min/std::max on doubles are (b < a ? b : a) / (a < b ? b : a); minpd/maxpd
 // return their second operand when the comparison fails, so the argument order below gives the same values (sums
 // here are never NaN).
@@ -98,9 +109,10 @@ template <FillRule R>
 
 // One block of four cells v: their prefix sums in a register ([a, b, c, d] + [0, a, b, c] = [a, a+b, b+c, c+d];
 // plus [0, 0, a, a+b] = the prefix sums, added in sweep_block_scalar's order), coverage under the rule, snapped, as
-// four floats; the carried sum moved past the block.
+// four floats; the carried sum moved past the block. Returns which of the four are nonzero (bit i: cov[i] != 0; a
+// double this far from 0 stays nonzero as a float).
 template <FillRule R>
-[[gnu::target("avx2"), gnu::always_inline]] inline void sweep_block_avx2(__m256d v, float* cov, __m256d& carry) {
+[[gnu::target("avx2"), gnu::always_inline]] inline int sweep_block_avx2(__m256d v, float* cov, __m256d& carry) {
   const __m256d zero = _mm256_setzero_pd();
   const __m256d lo = _mm256_set1_pd(kSnap), hi = _mm256_set1_pd(1.0 - kSnap), one = _mm256_set1_pd(1.0);
   const __m256d t1 = _mm256_add_pd(v, _mm256_blend_pd(_mm256_permute4x64_pd(v, 0x90), zero, 0x1));
@@ -111,6 +123,7 @@ template <FillRule R>
   c = _mm256_andnot_pd(_mm256_cmp_pd(c, lo, _CMP_LT_OQ), c);       // below kSnap: 0
   c = _mm256_blendv_pd(c, one, _mm256_cmp_pd(c, hi, _CMP_GT_OQ));  // above 1 - kSnap: 1
   _mm_storeu_ps(cov, _mm256_cvtpd_ps(c));
+  return _mm256_movemask_pd(_mm256_cmp_pd(c, zero, _CMP_NEQ_UQ));
 }
 
 template <FillRule R>
@@ -132,7 +145,7 @@ template <FillRule R>
 [[gnu::target("avx2")]] inline void sweep_short_run_avx2(double* cells, float* cov, int n, double& sum) {
   const __m256i lanes = _mm256_setr_epi64x(0, 1, 2, 3);
   const __m256d in_run = _mm256_castsi256_pd(_mm256_cmpgt_epi64(_mm256_set1_epi64x(n), lanes));
-  const __m256d v = _mm256_loadu_pd(cells);
+  const __m256d v = load_fresh_cells(cells);
   _mm256_storeu_pd(cells, _mm256_andnot_pd(in_run, v));  // the run's cells zeroed, the others kept
   __m256d carry = _mm256_set1_pd(sum);
   sweep_block_avx2<R>(_mm256_and_pd(in_run, v), cov, carry);
@@ -143,12 +156,13 @@ template <FillRule R>
 // zero: the block is swept whole and zeroed by a store of constants (no mask). The store's data then does not wait
 // for the cells, so the next row's pieces, which add to the same cells, need not wait for this row's sweep.
 template <FillRule R>
-[[gnu::target("avx2")]] inline void sweep_zeroed_block_avx2(double* cells, float* cov, double& sum) {
-  const __m256d v = _mm256_loadu_pd(cells);
+[[gnu::target("avx2")]] inline int sweep_zeroed_block_avx2(double* cells, float* cov, double& sum) {
+  const __m256d v = load_fresh_cells(cells);
   _mm256_storeu_pd(cells, _mm256_setzero_pd());
   __m256d carry = _mm256_set1_pd(sum);
-  sweep_block_avx2<R>(v, cov, carry);
+  const int nonzero = sweep_block_avx2<R>(v, cov, carry);
   sum = _mm_cvtsd_f64(_mm256_castpd256_pd128(carry));
+  return nonzero;
 }
 
 #endif
@@ -404,26 +418,58 @@ constexpr int kNarrowRowCells = 32;
 // cells in between are swept too (untouched ones are zero, and add nothing to the sum), with no search for runs.
 // Writes the coverage of cells x_lo .. x_hi to cov[0 .. n) (and up to three floats past, kNarrowRowCoverage in all),
 // zeroes the cells, and returns the coverage right of them: the sum holds to the row's end there (edges right of
-// the image were dropped). Same padding and kAvx2 as resolve_row.
+// the image were dropped). `nonzero` gets bit i set where cov[i] != 0 (i < n), so that the row can be trimmed to its
+// nonzero pixels without a loop whose length changes from row to row (its exits were mispredicted on a tenth of a
+// thin shape's rows). Same padding and kAvx2 as resolve_row.
 constexpr int kNarrowRowCoverage = kNarrowRowCells;
+static_assert(kNarrowRowCells <= 32, "sweep_narrow_row's nonzero mask has a bit per cell");
 template <FillRule R, bool kAvx2 = false>
-[[gnu::always_inline]] inline float sweep_narrow_row(int x_lo, int x_hi, double* acc, float* cov) {
+[[gnu::always_inline]] inline float sweep_narrow_row(int x_lo, int x_hi, double* acc, float* cov,
+                                                     std::uint32_t& nonzero) {
   const int n = x_hi - x_lo + 1;
   double sum = 0;
+  std::uint32_t bits = 0;
   for (int i = 0; i < n; i += 4) {
 #ifdef VRASTER_HAVE_AVX2_KERNELS
     if constexpr (kAvx2) {
-      sweep_zeroed_block_avx2<R>(acc + x_lo + i, cov + i, sum);
+      bits |= static_cast<std::uint32_t>(sweep_zeroed_block_avx2<R>(acc + x_lo + i, cov + i, sum)) << i;
       continue;
     }
 #endif
     sweep_block_scalar<R>(acc + x_lo + i, cov + i, std::min(4, n - i), sum);
+    for (int j = i; j < std::min(i + 4, n); ++j) bits |= static_cast<std::uint32_t>(cov[j] != 0) << j;
   }
+  nonzero = n < 32 ? bits & ((std::uint32_t{1} << n) - 1) : bits;  // the last block's lanes past n left out
   return coverage_of<R>(sum);
 }
 
 // [a, b) narrowed to the part of cov[a .. b) between its first and last nonzero entries (empty when all are zero).
+// The number of zeros at a row's ends changes from row to row, and a loop over them one by one was mispredicted at
+// its exit: on x86-64 they are passed four at a time (SSE2, always there) in the blocks of four the sweep stored
+// them in, counted from cov[0] (a must be a multiple of 4). A load that straddles two of the sweep's stores, or a
+// last block it stored one float at a time, would wait for the stores to reach the cache: entries past the last
+// whole block are passed one by one.
 inline void trim_zeros(const float* cov, int& a, int& b) {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  const __m128 zero = _mm_setzero_ps();
+  while (b - a >= 4) {
+    const int nonzero = _mm_movemask_ps(_mm_cmpneq_ps(_mm_loadu_ps(cov + a), zero));  // NaN counts as nonzero
+    if (nonzero != 0) {
+      a += std::countr_zero(static_cast<unsigned>(nonzero));
+      break;
+    }
+    a += 4;
+  }
+  while (b > a && (b & 3) != 0 && cov[b - 1] == 0) --b;
+  while (b - a >= 4 && (b & 3) == 0) {
+    const int nonzero = _mm_movemask_ps(_mm_cmpneq_ps(_mm_loadu_ps(cov + b - 4), zero));
+    if (nonzero != 0) {
+      b -= std::countl_zero(static_cast<unsigned>(nonzero)) - 28;  // past the last nonzero of the four
+      return;
+    }
+    b -= 4;
+  }
+#endif
   while (a < b && cov[a] == 0) ++a;
   while (b > a && cov[b - 1] == 0) --b;
 }

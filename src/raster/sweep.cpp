@@ -245,10 +245,14 @@ template <FillRule R, bool kAvx2, bool kChoose>
       continue;
     }
     float* const row_coverage = batch.slot();
-    const float right = detail::sweep_narrow_row<R, kAvx2>(x_lo, x_hi, acc, row_coverage);
-    int from = 0, to = std::min(x_hi - x_lo + 1, width - x_lo);  // pixels at or right of the image's edge left out
-    detail::trim_zeros(row_coverage, from, to);
-    if (to > from) batch.add(y, x_lo + from, x_lo + to, row_coverage + from);
+    std::uint32_t nonzero;
+    const float right = detail::sweep_narrow_row<R, kAvx2>(x_lo, x_hi, acc, row_coverage, nonzero);
+    const int visible = width - x_lo;  // pixels at or right of the image's edge left out
+    if (visible < 32) nonzero &= visible > 0 ? (std::uint32_t{1} << visible) - 1 : 0;
+    if (nonzero != 0) {
+      const int from = std::countr_zero(nonzero), to = 32 - std::countl_zero(nonzero);
+      batch.add(y, x_lo + from, x_lo + to, row_coverage + from);
+    }
     if (right > 0 && x_hi + 1 < width) {
       batch.hand_over();
       sink.span(y, x_hi + 1, width, right);
