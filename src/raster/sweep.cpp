@@ -304,17 +304,23 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
   for (const Edge& e : edges) {
     const int r0 = std::max(static_cast<int>(std::floor(e.y0)), y_min);
     const int r1 = std::min(static_cast<int>(std::ceil(e.y1)), y_max);
+    // The edge's piece in row y runs from (ya, xa) to (yb, xb): ya = max(y0, y), yb = min(y1, y + 1), x at each
+    // (x0, x1 at the ends). Below the first row ya is y, the previous row's yb: its x is carried, not computed again.
+    double ya = std::max(e.y0, static_cast<double>(r0));
+    double xa = (ya == e.y0 ? e.x0 : e.x_at(ya)) - shift;
     for (int y = r0; y < r1; ++y) {
-      const double ya = std::max(e.y0, static_cast<double>(y)), yb = std::min(e.y1, y + 1.0);
-      if (!(yb > ya)) continue;
-      const double xa = (ya == e.y0 ? e.x0 : e.x_at(ya)) - shift;
+      const double yb = std::min(e.y1, y + 1.0);
       const double xb = (yb == e.y1 ? e.x1 : e.x_at(yb)) - shift;
-      accumulate_piece(block + static_cast<std::size_t>(y - y_min) * columns, xa, xb, (yb - ya) * e.winding);
-      if constexpr (kTrimmed) {
-        int* row_extent = extent + 2 * (y - y_min);
-        row_extent[0] = std::min(row_extent[0], static_cast<int>(std::min(xa, xb)));
-        row_extent[1] = std::max(row_extent[1], static_cast<int>(std::max(xa, xb)) + 1);
+      if (yb > ya) {
+        accumulate_piece(block + static_cast<std::size_t>(y - y_min) * columns, xa, xb, (yb - ya) * e.winding);
+        if constexpr (kTrimmed) {
+          int* row_extent = extent + 2 * (y - y_min);
+          row_extent[0] = std::min(row_extent[0], static_cast<int>(std::min(xa, xb)));
+          row_extent[1] = std::max(row_extent[1], static_cast<int>(std::max(xa, xb)) + 1);
+        }
       }
+      ya = yb;
+      xa = xb;
     }
   }
   const int visible = std::min(columns, width - x_base);  // the last cells may lie at or right of the image edge
