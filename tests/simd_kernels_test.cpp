@@ -51,10 +51,13 @@ TEST(SimdKernels, CoverageIsTheSameBitsWithAndWithoutAvx2) {
   std::mt19937 rng(90210);
   int compared = 0;
   for (int it = 0; it < 120; ++it) {
-    // Small paths take the dense sweep, large ones (dense limit 0) the row sweep with its touched runs.
-    const bool dense = it % 2 == 0;
+    // Small paths take the dense sweep, large ones (dense limit 0) the row sweep with its touched runs. One in four
+    // is glyph-sized (a dense block under 24 columns, whose rows are swept whole), some over the right edge.
+    const bool dense = it % 2 == 0, glyph_sized = it % 4 == 0;
     const int w = 20 + static_cast<int>(rng() % 90), h = 10 + static_cast<int>(rng() % 60);
-    const Path path = random_path(rng, -10, w + 10, it % 3 == 0);
+    const double lo = glyph_sized ? w - 6.0 - static_cast<double>(rng() % 20) : -10.0;
+    const double hi = glyph_sized ? lo + 2.0 + static_cast<double>(rng() % 20) : w + 10.0;
+    const Path path = random_path(rng, lo, hi, it % 3 == 0);
     Polylines lines;
     flatten(path, Affine{}, FlattenOptions{}, lines);
     for (FillRule rule : kRules) {

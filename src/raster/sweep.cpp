@@ -288,12 +288,20 @@ template <FillRule R, bool kChoose>
 // Narrow blocks sweep whole rows: there is little outside to skip, and noting it would cost more.
 constexpr int kTrimmedDenseColumns = 24;
 
-template <FillRule R, bool kTrimmed>
-VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns,
-                                     int width, double* block, int* extent, const detail::RowBatchBuffers& out,
-                                     CoverageSink& sink) {
+// A dense block's rows are this many cells apart (columns rounded up to whole blocks of four): a narrow block's rows
+// are swept in whole blocks, each row's own (the cells past `columns` stay zero).
+constexpr int dense_stride(int columns) { return (columns + 3) & ~3; }
+static_assert(kTrimmedDenseColumns <= 32, "a narrow block's row fits sweep_narrow_row's nonzero mask");
+
+// kAvx2: compiled into an AVX2 function (sweep_dense_rows_avx2), whose narrow blocks' rows take sweep_narrow_row's
+// AVX2 blocks and its mask of nonzero coverage (no trimming loops).
+template <FillRule R, bool kTrimmed, bool kAvx2>
+[[gnu::always_inline]] inline void sweep_dense_block(const std::vector<Edge>& edges, int y_min, int y_max, int x_base,
+                                                     int columns, int width, double* block, int* extent,
+                                                     const detail::RowBatchBuffers& out, CoverageSink& sink) {
+  const int stride = dense_stride(columns);
   sink.expect(y_min, y_max, x_base, x_base + columns);
-  RowBatch batch(sink, out, static_cast<std::size_t>(columns));
+  RowBatch batch(sink, out, static_cast<std::size_t>(stride));
   const double shift = x_base;
   if constexpr (kTrimmed) {
     for (int r = 0; r < y_max - y_min; ++r) {
@@ -312,7 +320,7 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
       const double yb = std::min(e.y1, y + 1.0);
       const double xb = (yb == e.y1 ? e.x1 : e.x_at(yb)) - shift;
       if (yb > ya) {
-        accumulate_piece(block + static_cast<std::size_t>(y - y_min) * columns, xa, xb, (yb - ya) * e.winding);
+        accumulate_piece(block + static_cast<std::size_t>(y - y_min) * stride, xa, xb, (yb - ya) * e.winding);
         if constexpr (kTrimmed) {
           int* row_extent = extent + 2 * (y - y_min);
           row_extent[0] = std::min(row_extent[0], static_cast<int>(std::min(xa, xb)));
@@ -325,15 +333,15 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
   }
   const int visible = std::min(columns, width - x_base);  // the last cells may lie at or right of the image edge
   for (int y = y_min; y < y_max; ++y) {
-    double* row = block + static_cast<std::size_t>(y - y_min) * columns;
+    double* row = block + static_cast<std::size_t>(y - y_min) * stride;
     float* const cov = batch.slot();
-    double sum = 0;
     int a = 0, b = visible;
     float c;  // the coverage right of the swept cells
     if constexpr (kTrimmed) {
       const int* row_extent = extent + 2 * (y - y_min);
       if (row_extent[1] < 0) continue;  // no piece in this row: coverage 0 all along
       const int from = row_extent[0] & ~3, to = std::min(columns, (row_extent[1] + 4) & ~3);
+      double sum = 0;
       detail::sweep_cells<R>(row + from, cov + from, to - from, sum);
       c = coverage_of<R>(sum);
       a = from;
@@ -342,11 +350,19 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
       } else {
         b = std::min(b, to);
       }
+      detail::trim_zeros(cov, a, b);
     } else {
-      detail::sweep_cells<R>(row, cov, columns, sum);
-      c = coverage_of<R>(sum);
+      // The whole row (whole blocks from column 0, as sweep_cells adds them) and which pixels have coverage.
+      std::uint32_t nonzero;
+      c = detail::sweep_narrow_row<R, kAvx2>(0, columns - 1, row, cov, nonzero);
+      if (visible < 32) nonzero &= visible > 0 ? (std::uint32_t{1} << visible) - 1 : 0;
+      if (nonzero != 0) {
+        a = std::countr_zero(nonzero);
+        b = 32 - std::countl_zero(nonzero);
+      } else {
+        b = a;
+      }
     }
-    detail::trim_zeros(cov, a, b);
     if (b > a) batch.add(y, x_base + a, x_base + b, cov + a);
     // Edges right of the image were dropped, so the sum need not return to 0: it holds to the row's end.
     if (x_base + columns < width && c > 0) {
@@ -355,6 +371,32 @@ VRASTER_CLONES void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, 
     }
   }
   batch.hand_over();
+}
+
+template <FillRule R, bool kTrimmed>
+void sweep_dense_rows_portable(const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns,
+                               int width, double* block, int* extent, const detail::RowBatchBuffers& out,
+                               CoverageSink& sink) {
+  sweep_dense_block<R, kTrimmed, false>(edges, y_min, y_max, x_base, columns, width, block, extent, out, sink);
+}
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+template <FillRule R, bool kTrimmed>
+[[gnu::target("avx2")]] void sweep_dense_rows_avx2(const std::vector<Edge>& edges, int y_min, int y_max, int x_base,
+                                                   int columns, int width, double* block, int* extent,
+                                                   const detail::RowBatchBuffers& out, CoverageSink& sink) {
+  sweep_dense_block<R, kTrimmed, true>(edges, y_min, y_max, x_base, columns, width, block, extent, out, sink);
+}
+#endif
+
+template <FillRule R, bool kTrimmed>
+void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns, int width,
+                      double* block, int* extent, const detail::RowBatchBuffers& out, CoverageSink& sink) {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  if (detail::cpu_has_avx2()) {
+    return sweep_dense_rows_avx2<R, kTrimmed>(edges, y_min, y_max, x_base, columns, width, block, extent, out, sink);
+  }
+#endif
+  sweep_dense_rows_portable<R, kTrimmed>(edges, y_min, y_max, x_base, columns, width, block, extent, out, sink);
 }
 
 template <FillRule R>
@@ -397,12 +439,12 @@ detail::RowBatchBuffers detail::row_batch_buffers(std::vector<CoverageRow>& batc
 
 bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink) {
   if (!fits_dense(edges_, y_min_, y_max_, columns, dense_limit_)) return false;
-  const std::int64_t cells = static_cast<std::int64_t>(columns) * (y_max_ - y_min_);
+  const std::int64_t cells = static_cast<std::int64_t>(dense_stride(columns)) * (y_max_ - y_min_);
   if (dense_block_.size() < static_cast<std::size_t>(cells)) dense_block_.assign(static_cast<std::size_t>(cells), 0.0);
   const auto extents = static_cast<std::size_t>(2 * (y_max_ - y_min_));
   if (dense_extent_.size() < extents) dense_extent_.resize(extents);
   double* block = dense_block_.data();
-  const RowBatchBuffers out = row_batch_buffers(dense_batch_, row_coverage_, y_max_ - y_min_, columns);
+  const RowBatchBuffers out = row_batch_buffers(dense_batch_, row_coverage_, y_max_ - y_min_, dense_stride(columns));
   with_rule(rule, [&](auto r) {
     sweep_dense_rows<decltype(r)::value>(edges_, y_min_, y_max_, x_base, columns, width, block,
                                          dense_extent_.data(), out, sink);
@@ -414,12 +456,11 @@ bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, i
 // of the edges inside that row (in edge order) and its own running sum, so a block of fewer rows gives those rows'
 // bits exactly.
 void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s) {
-  const auto columns = static_cast<std::size_t>(fill.columns);
-  const std::size_t cells = columns * static_cast<std::size_t>(y_to - y_from);
+  const std::size_t cells = static_cast<std::size_t>(dense_stride(fill.columns)) * static_cast<std::size_t>(y_to - y_from);
   if (s.dense_block.size() < cells) s.dense_block.assign(cells, 0.0);
   const auto extents = static_cast<std::size_t>(2 * (y_to - y_from));
   if (s.dense_extent.size() < extents) s.dense_extent.resize(extents);
-  const RowBatchBuffers out = row_batch_buffers(s.batch, s.coverage, y_to - y_from, fill.columns);
+  const RowBatchBuffers out = row_batch_buffers(s.batch, s.coverage, y_to - y_from, dense_stride(fill.columns));
   with_rule(fill.rule, [&](auto r) {
     sweep_dense_rows<decltype(r)::value>(fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width,
                                          s.dense_block.data(), s.dense_extent.data(), out, *fill.sink);
