@@ -342,7 +342,14 @@ template <FillRule R, bool kTrimmed, bool kAvx2>
       if (row_extent[1] < 0) continue;  // no piece in this row: coverage 0 all along
       const int from = row_extent[0] & ~3, to = std::min(columns, (row_extent[1] + 4) & ~3);
       double sum = 0;
-      detail::sweep_cells<R>(row + from, cov + from, to - from, sum);
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+      if constexpr (kAvx2) {
+        detail::sweep_cells_avx2<R>(row + from, cov + from, to - from, sum);  // chosen already: no test per row
+      } else
+#endif
+      {
+        detail::sweep_cells<R>(row + from, cov + from, to - from, sum);
+      }
       c = coverage_of<R>(sum);
       a = from;
       if (c > 0) {
