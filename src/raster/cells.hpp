@@ -474,12 +474,6 @@ inline void trim_zeros(const float* cov, int& a, int& b) {
   while (b > a && cov[b - 1] == 0) --b;
 }
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-#define VRASTER_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define VRASTER_CLONES
-#endif
-
 // Calls f with the fill rule as a compile-time constant, so the per-cell coverage function (and
 // any other per-rule test) is chosen once per fill.
 template <class F>
