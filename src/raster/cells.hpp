@@ -443,6 +443,16 @@ template <FillRule R, bool kAvx2 = false>
   return coverage_of<R>(sum);
 }
 
+// A narrow row's nonzero pixels inside the image: [from, to) from the first to one past the last bit of
+// sweep_narrow_row's mask below `visible` (the pixels left of the image's right edge). False when there are none.
+inline bool nonzero_bounds(std::uint32_t nonzero, int visible, int& from, int& to) {
+  if (visible < 32) nonzero &= visible > 0 ? (std::uint32_t{1} << visible) - 1 : 0;
+  if (nonzero == 0) return false;
+  from = std::countr_zero(nonzero);
+  to = 32 - std::countl_zero(nonzero);
+  return true;
+}
+
 // [a, b) narrowed to the part of cov[a .. b) between its first and last nonzero entries (empty when all are zero).
 // The number of zeros at a row's ends changes from row to row, and a loop over them one by one was mispredicted at
 // its exit: on x86-64 they are passed four at a time (SSE2, always there) in the blocks of four the sweep stored

@@ -247,10 +247,8 @@ template <FillRule R, bool kAvx2, bool kChoose>
     float* const row_coverage = batch.slot();
     std::uint32_t nonzero;
     const float right = detail::sweep_narrow_row<R, kAvx2>(x_lo, x_hi, acc, row_coverage, nonzero);
-    const int visible = width - x_lo;  // pixels at or right of the image's edge left out
-    if (visible < 32) nonzero &= visible > 0 ? (std::uint32_t{1} << visible) - 1 : 0;
-    if (nonzero != 0) {
-      const int from = std::countr_zero(nonzero), to = 32 - std::countl_zero(nonzero);
+    int from, to;
+    if (detail::nonzero_bounds(nonzero, width - x_lo, from, to)) {
       batch.add(y, x_lo + from, x_lo + to, row_coverage + from);
     }
     if (right > 0 && x_hi + 1 < width) {
@@ -362,13 +360,7 @@ template <FillRule R, bool kTrimmed, bool kAvx2>
       // The whole row (whole blocks from column 0, as sweep_cells adds them) and which pixels have coverage.
       std::uint32_t nonzero;
       c = detail::sweep_narrow_row<R, kAvx2>(0, columns - 1, row, cov, nonzero);
-      if (visible < 32) nonzero &= visible > 0 ? (std::uint32_t{1} << visible) - 1 : 0;
-      if (nonzero != 0) {
-        a = std::countr_zero(nonzero);
-        b = 32 - std::countl_zero(nonzero);
-      } else {
-        b = a;
-      }
+      if (!detail::nonzero_bounds(nonzero, visible, a, b)) b = a;
     }
     if (b > a) batch.add(y, x_base + a, x_base + b, cov + a);
     // Edges right of the image were dropped, so the sum need not return to 0: it holds to the row's end.
