@@ -339,7 +339,6 @@ TEST(AccumulatePiece, Avx2WholeCellsAddTheSameNumbers) {
 #endif
 }
 
-
 // trim_zeros passes zeros four at a time where it can: it must give the bounds of a one-by-one scan on every pattern
 // of zeros, with -0 counting as zero and NaN as nonzero, from every start on the sweep's block grid.
 TEST(TrimZeros, GivesTheBoundsOfAOneByOneScanOnEveryPatternOfZeros) {

@@ -178,6 +178,16 @@ inline void sweep_cells(double* cells, float* cov, int n, double& sum) {
 }
 
 
+/// sweep_cells with the kernel chosen at compile time: kAvx2 where the caller is compiled for AVX2 and was chosen
+/// per fill already (no test per run).
+template <FillRule R, bool kAvx2>
+[[gnu::always_inline]] inline void sweep_cells_for(double* cells, float* cov, int n, double& sum) {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  if constexpr (kAvx2) return sweep_cells_avx2<R>(cells, cov, n, sum);
+#endif
+  sweep_cells<R>(cells, cov, n, sum);
+}
+
 // Adds one straight piece of an edge inside a row to the accumulation cells. The piece runs between x = xa and
 // x = xb (either order) and covers height h of the row (signed by winding). Cell i receives the part of h
 // times the share of the cell right of the piece, cell i + 1 the rest; the running sum along the row is then the
@@ -396,14 +406,7 @@ template <FillRule R, bool kAvx2 = false>
         sweep_block_scalar<R>(acc + t, cov + (t - run), e - t, sum);
       }
     } else {
-#ifdef VRASTER_HAVE_AVX2_KERNELS
-      if constexpr (kAvx2) {
-        sweep_cells_avx2<R>(acc + t, cov + (t - run), e - t, sum);  // chosen already: no test per run
-      } else
-#endif
-      {
-        sweep_cells<R>(acc + t, cov + (t - run), e - t, sum);
-      }
+      sweep_cells_for<R, kAvx2>(acc + t, cov + (t - run), e - t, sum);
     }
     x = e;
   }

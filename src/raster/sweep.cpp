@@ -340,14 +340,7 @@ template <FillRule R, bool kTrimmed, bool kAvx2>
       if (row_extent[1] < 0) continue;  // no piece in this row: coverage 0 all along
       const int from = row_extent[0] & ~3, to = std::min(columns, (row_extent[1] + 4) & ~3);
       double sum = 0;
-#ifdef VRASTER_HAVE_AVX2_KERNELS
-      if constexpr (kAvx2) {
-        detail::sweep_cells_avx2<R>(row + from, cov + from, to - from, sum);  // chosen already: no test per row
-      } else
-#endif
-      {
-        detail::sweep_cells<R>(row + from, cov + from, to - from, sum);
-      }
+      detail::sweep_cells_for<R, kAvx2>(row + from, cov + from, to - from, sum);
       c = coverage_of<R>(sum);
       a = from;
       if (c > 0) {
@@ -455,7 +448,8 @@ bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, i
 // of the edges inside that row (in edge order) and its own running sum, so a block of fewer rows gives those rows'
 // bits exactly.
 void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s) {
-  const std::size_t cells = static_cast<std::size_t>(dense_stride(fill.columns)) * static_cast<std::size_t>(y_to - y_from);
+  const std::size_t cells =
+      static_cast<std::size_t>(dense_stride(fill.columns)) * static_cast<std::size_t>(y_to - y_from);
   if (s.dense_block.size() < cells) s.dense_block.assign(cells, 0.0);
   const auto extents = static_cast<std::size_t>(2 * (y_to - y_from));
   if (s.dense_extent.size() < extents) s.dense_extent.resize(extents);
