@@ -351,7 +351,8 @@ inline void clear_words(std::uint64_t* bits, int w0, int w1) {
 }
 
 // Untouched stretches shorter than this inside a run of touched cells are written into the run's coverage instead
-// of being a span of their own: one compositor call covers several edges.
+// of being a span of their own (and pieces this close are one cluster of a sparse row, sweep.cpp): one compositor
+// call covers several edges.
 constexpr int kMergeGap = 24;
 
 // Row padding the short-run AVX2 block needs: cells and coverage past the last cell a piece can write.
@@ -417,20 +418,18 @@ template <FillRule R, bool kAvx2 = false>
 // Rows whose pieces all fall within this many cells (thin shapes, the tips of others) are swept as one run.
 constexpr int kNarrowRowCells = 32;
 
-// A row whose touched cells lie in [x_lo, x_hi], at most kNarrowRowCells of them, swept without touched bits: the
-// cells in between are swept too (untouched ones are zero, and add nothing to the sum), with no search for runs.
-// Writes the coverage of cells x_lo .. x_hi to cov[0 .. n) (and up to three floats past, kNarrowRowCoverage in all),
-// zeroes the cells, and returns the coverage right of them: the sum holds to the row's end there (edges right of
-// the image were dropped). `nonzero` gets bit i set where cov[i] != 0 (i < n), so that the row can be trimmed to its
-// nonzero pixels without a loop whose length changes from row to row (its exits were mispredicted on a tenth of a
-// thin shape's rows). Same padding and kAvx2 as resolve_row.
-constexpr int kNarrowRowCoverage = kNarrowRowCells;
+constexpr int kNarrowRowCoverage = kNarrowRowCells;  // floats of coverage a narrow row writes, at most
 static_assert(kNarrowRowCells <= 32, "sweep_narrow_row's nonzero mask has a bit per cell");
+
+// Cells x_lo .. x_hi (at most kNarrowRowCells) swept in whole blocks of four from x_lo, with the running sum carried
+// in and out of `sum`; the cells up to three past x_hi must be zero (untouched). Writes the coverage of cells x_lo ..
+// x_hi to cov[0 .. n) (and up to three floats past), zeroes the cells, and returns a mask with bit i set where
+// cov[i] != 0 (i < n), so that the row can be trimmed to its nonzero pixels without a loop whose length changes from
+// row to row (its exits were mispredicted on a tenth of a thin shape's rows). Same padding and kAvx2 as resolve_row.
 template <FillRule R, bool kAvx2 = false>
-[[gnu::always_inline]] inline float sweep_narrow_row(int x_lo, int x_hi, double* acc, float* cov,
-                                                     std::uint32_t& nonzero) {
+[[gnu::always_inline]] inline std::uint32_t sweep_narrow_cells(int x_lo, int x_hi, double* acc, float* cov,
+                                                               double& sum) {
   const int n = x_hi - x_lo + 1;
-  double sum = 0;
   std::uint32_t bits = 0;
   for (int i = 0; i < n; i += 4) {
 #ifdef VRASTER_HAVE_AVX2_KERNELS
@@ -442,7 +441,18 @@ template <FillRule R, bool kAvx2 = false>
     sweep_block_scalar<R>(acc + x_lo + i, cov + i, std::min(4, n - i), sum);
     for (int j = i; j < std::min(i + 4, n); ++j) bits |= static_cast<std::uint32_t>(cov[j] != 0) << j;
   }
-  nonzero = n < 32 ? bits & ((std::uint32_t{1} << n) - 1) : bits;  // the last block's lanes past n left out
+  return n < 32 ? bits & ((std::uint32_t{1} << n) - 1) : bits;  // the last block's lanes past n left out
+}
+
+// A row whose touched cells lie in [x_lo, x_hi], at most kNarrowRowCells of them, swept without touched bits: the
+// cells in between are swept too (untouched ones are zero, and add nothing to the sum), with no search for runs.
+// sweep_narrow_cells from a sum of 0 (`nonzero` gets its mask); returns the coverage right of the cells: the sum
+// holds to the row's end there (edges right of the image were dropped).
+template <FillRule R, bool kAvx2 = false>
+[[gnu::always_inline]] inline float sweep_narrow_row(int x_lo, int x_hi, double* acc, float* cov,
+                                                     std::uint32_t& nonzero) {
+  double sum = 0;
+  nonzero = sweep_narrow_cells<R, kAvx2>(x_lo, x_hi, acc, cov, sum);
   return coverage_of<R>(sum);
 }
 

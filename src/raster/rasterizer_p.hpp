@@ -35,6 +35,7 @@ struct ActiveEdges {
   std::vector<double> x;   // where the edge enters the current row
   std::vector<double> xb;  // the current row: where it leaves the row
   std::vector<double> h;   // the current row: the piece's height times the winding (0: no piece)
+  std::vector<std::uint64_t> ranges;  // a wide row's pieces: first cell << 32 | last cell (not a column: scratch)
   std::size_t size = 0;
 
   void clear() { size = 0; }
@@ -43,6 +44,7 @@ struct ActiveEdges {
     if (x.size() >= n + kPadding) return;
     const std::size_t room = std::max<std::size_t>(2 * x.size(), n + kPadding);
     for (std::vector<double>* c : {&x0, &y0, &dxdy, &y1, &x1, &winding, &x, &xb, &h}) c->resize(room);
+    ranges.resize(room);
   }
   /// Appends edge e entering the current row at x_enter (call reserve first).
   void push(const Edge& e, double x_enter) {
