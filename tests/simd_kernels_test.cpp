@@ -425,5 +425,48 @@ TEST(NarrowRowSweep, NonzeroBitsAreThePixelsWithCoverage) {
   EXPECT_GT(partly_zero, 1000);
 }
 
+// Coverage within kSnap of 0 or 1 is snapped to it. The AVX2 block snaps only towards 0 in doubles and leaves the
+// snap to 1 to the conversion to float (the floats below 1 are 2^-24 apart); both must give snapped()'s floats and
+// the same nonzero bits for sums at and around both thresholds, under every rule (EvenOdd folds sums near 2 and 3
+// onto coverage near 0 and 1).
+TEST(NarrowRowSweep, CoverageNearZeroAndOneIsSnappedAlikeWithAndWithoutAvx2) {
+  const double snap = detail::kSnap;
+  std::vector<double> sums;
+  for (const double base : {0.0, 1.0, 2.0, 3.0, -1.0, -2.0}) {
+    for (const double off : {0.0, snap / 4, snap / 2, snap * 0.999, snap, snap * 1.001, 2 * snap, 0x1p-30, 0x1p-26,
+                             0x1p-25, 0x1p-24, 0x1p-20}) {
+      sums.push_back(base + off);
+      sums.push_back(base - off);
+    }
+  }
+  int compared = 0;
+  auto check = [&](auto rule) {
+    constexpr FillRule R = decltype(rule)::value;
+    for (const double s : sums) {
+      // A narrow row of four cells whose running sums are 0.25 s, 0.5 s, 0.75 s and s (a quarter of s per cell).
+      double portable[4 + detail::kRowPadding] = {}, fast[4 + detail::kRowPadding] = {};
+      for (int i = 0; i < 4; ++i) portable[i] = fast[i] = s / 4;
+      float cov[detail::kNarrowRowCoverage + 4] = {}, cov_fast[detail::kNarrowRowCoverage + 4] = {};
+      std::uint32_t bits = 0, bits_fast = 0;
+      detail::sweep_narrow_row<R>(0, 3, portable, cov, bits);
+      const double q = s / 4;
+      const double prefix[4] = {q, q + q, (q + q) + q, (q + q) + (q + q)};  // sweep_block_scalar's order
+      for (int i = 0; i < 4; ++i) {
+        ASSERT_EQ(cov[i], detail::coverage_of<R>(prefix[i])) << to_string(R) << " sum " << s << " cell " << i;
+      }
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+      if (__builtin_cpu_supports("avx2")) {
+        sweep_narrow_row_avx2<R>(0, 3, fast, cov_fast, bits_fast);
+        ASSERT_EQ(bits_fast, bits) << to_string(R) << " sum " << s;
+        for (int i = 0; i < 4; ++i) ASSERT_EQ(cov_fast[i], cov[i]) << to_string(R) << " sum " << s << " cell " << i;
+      }
+#endif
+      ++compared;
+    }
+  };
+  for (FillRule rule : kRules) detail::with_rule(rule, check);
+  EXPECT_EQ(compared, static_cast<int>(5 * sums.size()));
+}
+
 }  // namespace
 }  // namespace vraster::test

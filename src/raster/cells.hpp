@@ -110,20 +110,22 @@ template <FillRule R>
 // One block of four cells v: their prefix sums in a register ([a, b, c, d] + [0, a, b, c] = [a, a+b, b+c, c+d];
 // plus [0, 0, a, a+b] = the prefix sums, added in sweep_block_scalar's order), coverage under the rule, snapped, as
 // four floats; the carried sum moved past the block. Returns which of the four are nonzero (bit i: cov[i] != 0; a
-// double this far from 0 stays nonzero as a float).
+// double this far from 0 stays nonzero as a float). Only the snap to 0 is done in doubles: a coverage within kSnap
+// of 1 rounds to 1.0f when it becomes a float (the floats below 1 are 2^-24 apart), which is what snapping it to 1
+// gives, so the four floats are snapped()'s.
 template <FillRule R>
 [[gnu::target("avx2"), gnu::always_inline]] inline int sweep_block_avx2(__m256d v, float* cov, __m256d& carry) {
+  static_assert(kSnap < 0x1p-25, "coverage within kSnap of 1 rounds to 1.0f");
   const __m256d zero = _mm256_setzero_pd();
-  const __m256d lo = _mm256_set1_pd(kSnap), hi = _mm256_set1_pd(1.0 - kSnap), one = _mm256_set1_pd(1.0);
+  const __m256d lo = _mm256_set1_pd(kSnap);
   const __m256d t1 = _mm256_add_pd(v, _mm256_blend_pd(_mm256_permute4x64_pd(v, 0x90), zero, 0x1));
   const __m256d t2 = _mm256_add_pd(t1, _mm256_permute2f128_pd(t1, t1, 0x08));
   const __m256d s = _mm256_add_pd(carry, t2);
   carry = _mm256_add_pd(carry, _mm256_permute4x64_pd(t2, 0xFF));
-  __m256d c = rule_coverage_avx2<R>(s);
-  c = _mm256_andnot_pd(_mm256_cmp_pd(c, lo, _CMP_LT_OQ), c);       // below kSnap: 0
-  c = _mm256_blendv_pd(c, one, _mm256_cmp_pd(c, hi, _CMP_GT_OQ));  // above 1 - kSnap: 1
-  _mm_storeu_ps(cov, _mm256_cvtpd_ps(c));
-  return _mm256_movemask_pd(_mm256_cmp_pd(c, zero, _CMP_NEQ_UQ));
+  const __m256d c = rule_coverage_avx2<R>(s);  // >= 0 and never NaN: below kSnap is exactly where it snaps to 0
+  const __m256d below = _mm256_cmp_pd(c, lo, _CMP_LT_OQ);
+  _mm_storeu_ps(cov, _mm256_cvtpd_ps(_mm256_andnot_pd(below, c)));
+  return _mm256_movemask_pd(below) ^ 0xF;
 }
 
 template <FillRule R>
