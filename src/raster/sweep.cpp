@@ -397,15 +397,34 @@ template <FillRule R, bool kTrimmed, bool kAvx2>
       if (row_extent[1] < 0) continue;  // no piece in this row: coverage 0 all along
       const int from = row_extent[0] & ~3, to = std::min(columns, (row_extent[1] + 4) & ~3);
       double sum = 0;
-      detail::sweep_cells_for<R, kAvx2>(row + from, cov + from, to - from, sum);
-      c = coverage_of<R>(sum);
-      a = from;
-      if (c > 0) {
-        std::fill(cov + std::min(to, visible), cov + visible, c);
+      if (to - from <= detail::kNarrowRowCells) {
+        // A short stretch (most rows of small and medium shapes): the narrow row's blocks (on the same grid, so the
+        // same sums) and its mask of nonzero pixels instead of trimming loops.
+        const std::uint32_t nonzero =
+            detail::sweep_narrow_cells<R, kAvx2>(0, to - from - 1, row + from, cov + from, sum);
+        c = coverage_of<R>(sum);
+        int lo = 0, hi = 0;
+        const bool any = detail::nonzero_bounds(nonzero, visible - from, lo, hi);
+        if (c > 0 && to < visible) {  // the coverage goes on to the block's right end
+          std::fill(cov + to, cov + visible, c);
+          a = any ? from + lo : to;
+        } else if (any) {
+          a = from + lo;
+          b = from + hi;
+        } else {
+          b = a;
+        }
       } else {
-        b = std::min(b, to);
+        detail::sweep_cells_for<R, kAvx2>(row + from, cov + from, to - from, sum);
+        c = coverage_of<R>(sum);
+        a = from;
+        if (c > 0) {
+          std::fill(cov + std::min(to, visible), cov + visible, c);
+        } else {
+          b = std::min(b, to);
+        }
+        detail::trim_zeros(cov, a, b);
       }
-      detail::trim_zeros(cov, a, b);
     } else {
       // The whole row (whole blocks from column 0, as sweep_cells adds them) and which pixels have coverage.
       std::uint32_t nonzero;
