@@ -6,6 +6,7 @@
 #include <random>
 
 #include "support/capture.hpp"
+#include "support/exact_reference.hpp"
 
 namespace vraster::test {
 namespace {
@@ -121,6 +122,33 @@ TEST(DenseSweep, MatchesTheRowSweepOnWideRowsWithPiecesCloseTogetherAndFarApart)
     if (HasFailure()) return;
   }
   EXPECT_EQ(compared, 120);
+}
+
+// Thin shapes take the dense sweep whatever their box, in strips of rows (a sliver across a 420 x 420 image is far
+// over the dense limit). Slivers never cross themselves, so analytic coverage is exact there up to round-off: each
+// must match the exact trapezoid reference, with the row sweep's coverage too, in every direction (steep and shallow,
+// both windings), some cut by the image's edges.
+TEST(DenseSweep, ThinShapesInStripsMatchTheExactReference) {
+  std::mt19937 rng(31337);
+  std::uniform_real_distribution<double> coord(-30, 450), unit(0, 1);
+  const int side = 420;
+  const int slivers = exact::kOptimizedBuild ? 40 : 10;
+  for (int it = 0; it < slivers; ++it) {
+    const Point a{coord(rng), coord(rng)}, b{coord(rng), coord(rng)};
+    const double base = 0.02 + 2 * unit(rng), turn = 6.283185307179586 * unit(rng);
+    const Point c{a.x + base * std::cos(turn), a.y + base * std::sin(turn)};
+    const std::vector<Polygon> shape{it % 2 == 0 ? Polygon{a, b, c} : Polygon{c, b, a}};
+    const Polylines lines = exact::polylines_of(shape);
+    const std::vector<double> want = exact::trapezoid_coverage(shape, FillRule::NonZero, side, side);
+    for (const std::int64_t limit : {Rasterizer::kDefaultDenseLimit, std::int64_t{0}}) {
+      const CoverageGrid got = fill_with(lines, FillRule::NonZero, side, side, limit);
+      std::vector<double> values(static_cast<std::size_t>(side) * side);
+      for (int y = 0; y < side; ++y) {
+        for (int x = 0; x < side; ++x) values[static_cast<std::size_t>(y) * side + x] = got.at(x, y);
+      }
+      ASSERT_TRUE(exact::grids_near(values, want, side, 1e-9)) << "sliver " << it << ", dense limit " << limit;
+    }
+  }
 }
 
 TEST(DenseSweep, WindingOfAShapeLeavingTheImageOnTheRightHoldsToTheRowEnd) {

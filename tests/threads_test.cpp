@@ -81,6 +81,15 @@ std::vector<Path> random_scene(std::uint32_t seed) {
     style.join = LineJoin::Round;
     paths.push_back(stroke_to_path(line, style, 0.1));
   }
+  for (int i = 0; i < 3; ++i) {  // slivers across the device: thin shapes, the dense sweep in strips
+    Path p;
+    const Point a{coord(rng), coord(rng)}, b{coord(rng), coord(rng)};
+    p.move_to(a);
+    p.line_to(b);
+    p.line_to({a.x + 0.6 * unit(rng), a.y + 0.6 * unit(rng)});
+    p.close();
+    paths.push_back(p);
+  }
   for (int i = 0; i < 20; ++i) {  // small shapes: one thread
     Path p;
     const Point o{coord(rng), coord(rng)};

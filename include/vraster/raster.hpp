@@ -151,8 +151,9 @@ class Rasterizer {
 
   /// Analytic fills of paths whose box spans at most this many cells may skip the edge table: each edge walks its
   /// own rows into a dense block (cheaper for glyph-sized paths and small shapes; same coverage). Boxes over 8192
-  /// cells go dense only where the edges pass through a good share of the box. 0 turns it off (tests use that to
-  /// compare both paths).
+  /// cells go dense only where the edges pass through a good share of the box. Thin shapes (slivers, thin strokes'
+  /// outlines) go dense whatever their box, in strips of kDefaultDenseLimit cells. 0 turns it off (tests use that
+  /// to compare both paths).
   void set_dense_limit(std::int64_t cells);
   static constexpr std::int64_t kDefaultDenseLimit = 32768;
 

@@ -117,8 +117,19 @@ struct RowBatchBuffers {
 };
 /// Sizes `batch` and `coverage` for batches of up to `rows` rows (kBatchRows at most) of `slot` floats each.
 RowBatchBuffers row_batch_buffers(std::vector<CoverageRow>& batch, std::vector<float>& coverage, int rows, int slot);
-/// Whether `edges` (rows [y_min, y_max), `columns` columns) take the dense sweep: small paths, a few thousand cells.
+/// Whether `edges` (rows [y_min, y_max), `columns` columns) take the dense sweep: small paths, a few thousand cells,
+/// and thin shapes of any size.
 bool fits_dense(const std::vector<Edge>& edges, int y_min, int y_max, int columns, std::int64_t dense_limit);
+/// The buffers of a dense sweep (kept from fill to fill; the block stays zero between fills).
+struct DenseScratch {
+  std::vector<double>& block;       // rows x columns of cells
+  std::vector<int>& extent;         // first and last cell written, per row
+  std::vector<CoverageRow>& batch;  // rows handed to the sink together
+  std::vector<float>& coverage;     // their coverage, a slot per row
+};
+/// The dense sweep of rows [y_from, y_to) of `edges` (cells [x_base, x_base + columns)).
+void sweep_dense_range(FillRule rule, const std::vector<Edge>& edges, int y_from, int y_to, int x_base, int columns,
+                       int width, DenseScratch s, CoverageSink& sink);
 
 /// Crossings of `edges` (clipped to rows [0, height)) inside pixel rows: per row, the pairs of edges whose x order
 /// at the row's top (ties by x at the bottom) differs from their order at its bottom. Counting stops once it

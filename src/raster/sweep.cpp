@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 
 #include "raster/boundary.hpp"
@@ -355,7 +356,6 @@ template <FillRule R, bool kTrimmed, bool kAvx2>
                                                      int columns, int width, double* block, int* extent,
                                                      const detail::RowBatchBuffers& out, CoverageSink& sink) {
   const int stride = dense_stride(columns);
-  sink.expect(y_min, y_max, x_base, x_base + columns);
   RowBatch batch(sink, out, static_cast<std::size_t>(stride));
   const double shift = x_base;
   if constexpr (kTrimmed) {
@@ -367,6 +367,7 @@ template <FillRule R, bool kTrimmed, bool kAvx2>
   for (const Edge& e : edges) {
     const int r0 = std::max(static_cast<int>(std::floor(e.y0)), y_min);
     const int r1 = std::min(static_cast<int>(std::ceil(e.y1)), y_max);
+    if (r0 >= r1) continue;  // outside this strip or band
     // The edge's piece in row y runs from (ya, xa) to (yb, xb): ya = max(y0, y), yb = min(y1, y + 1), x at each
     // (x0, x1 at the ends). Below the first row ya is y, the previous row's yb: its x is carried, not computed again.
     double ya = std::max(e.y0, static_cast<double>(r0));
@@ -484,17 +485,57 @@ void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int 
 constexpr std::int64_t kAlwaysDenseCells = 8192;
 constexpr double kDenseCellsPerOutline = 16;
 
+// Thin shapes (slivers, the outlines of thin strokes) take the dense sweep whatever their box, in strips
+// (sweep_dense_range): each of their rows is swept only between its first and last written cell, so an empty box
+// costs nothing, and the edges walk their rows without the active list. A shape is thin when its area is at most
+// kThinAreaPerOutline per unit of outline and, on kThinSampleRows rows spread over its height, the edges' x span at
+// most kThinRowCells cells on average (a ring with thin walls passes the first test, not the second: its rows span
+// the hole). Only fills of up to kThinMaxEdges edges are tested: the test is a pass over the edges, and on a fill of
+// many (a large curved shape) it cost more than thin shapes save (cubic_256 2 % slower). thin_slivers 12 % faster
+// (docs/performance.md).
+constexpr std::size_t kThinMaxEdges = 64;
+constexpr double kThinAreaPerOutline = 2;
+constexpr int kThinSampleRows = 16;
+constexpr double kThinRowCells = 24;
+
+namespace {
+bool thin_shape(const std::vector<Edge>& edges, int y_min, int y_max) {
+  if (edges.size() > kThinMaxEdges) return false;
+  double signed_area = 0, outline = 0;
+  for (const Edge& e : edges) {
+    signed_area += 0.5 * (e.x0 + e.x1) * (e.y1 - e.y0) * e.winding;
+    outline += (e.y1 - e.y0) + std::abs(e.x1 - e.x0);
+  }
+  if (std::abs(signed_area) > kThinAreaPerOutline * outline) return false;
+  // Sample row k is the line y = y_min + (k + 0.5) * step; each edge visits the samples between its ends.
+  double lo[kThinSampleRows], hi[kThinSampleRows];
+  std::fill(lo, lo + kThinSampleRows, std::numeric_limits<double>::infinity());
+  std::fill(hi, hi + kThinSampleRows, -std::numeric_limits<double>::infinity());
+  const double step = static_cast<double>(y_max - y_min) / kThinSampleRows;
+  for (const Edge& e : edges) {
+    const int k0 = std::max(static_cast<int>(std::ceil((e.y0 - y_min) / step - 0.5)), 0);
+    const int k1 = std::min(static_cast<int>(std::ceil((e.y1 - y_min) / step - 0.5)), kThinSampleRows);
+    for (int k = k0; k < k1; ++k) {
+      const double x = e.x_at(y_min + (k + 0.5) * step);
+      lo[k] = std::min(lo[k], x);
+      hi[k] = std::max(hi[k], x);
+    }
+  }
+  double span = 0;
+  for (int k = 0; k < kThinSampleRows; ++k) span += hi[k] > lo[k] ? hi[k] - lo[k] : 0.0;
+  return span <= kThinRowCells * kThinSampleRows;
+}
+}  // namespace
+
 // The one choice of the dense sweep, for fills drawn at once and queued ones alike (both must take the same path).
 bool detail::fits_dense(const std::vector<Edge>& edges, int y_min, int y_max, int columns, std::int64_t dense_limit) {
   if (edges.empty() || dense_limit <= 0) return false;
   const std::int64_t cells = static_cast<std::int64_t>(columns) * (y_max - y_min);
-  if (cells > dense_limit) return false;
-  if (cells > kAlwaysDenseCells) {
-    // A larger block pays only where edges pass through a good share of it: a thin sliver across a large box
-    // would have the dense sweep walk mostly empty cells that the row sweep skips.
-    if (static_cast<double>(cells) > kDenseCellsPerOutline * outline_cells(edges)) return false;
-  }
-  return true;
+  if (cells <= kAlwaysDenseCells) return true;
+  // A larger block pays where edges pass through a good share of it, or where every row's pieces lie close
+  // together; otherwise the row sweep's runs and spans skip more.
+  if (cells <= dense_limit && static_cast<double>(cells) <= kDenseCellsPerOutline * outline_cells(edges)) return true;
+  return thin_shape(edges, y_min, y_max);
 }
 
 detail::RowBatchBuffers detail::row_batch_buffers(std::vector<CoverageRow>& batch, std::vector<float>& coverage,
@@ -505,35 +546,40 @@ detail::RowBatchBuffers detail::row_batch_buffers(std::vector<CoverageRow>& batc
   return {batch.data(), coverage.data()};
 }
 
+// Rows [y_from, y_to) of a dense fill, in strips of at most Rasterizer::kDefaultDenseLimit cells (a thin shape's
+// box may be the image's, and the block must stay in the cache). Each row takes the pieces of the edges inside it (in
+// edge order) and a running sum of its own, so strips, like bands, give the bits one block would.
+void detail::sweep_dense_range(FillRule rule, const std::vector<Edge>& edges, int y_from, int y_to, int x_base,
+                               int columns, int width, DenseScratch s, CoverageSink& sink) {
+  const int stride = dense_stride(columns);
+  const int strip_rows =
+      static_cast<int>(std::clamp<std::int64_t>(Rasterizer::kDefaultDenseLimit / stride, 1, y_to - y_from));
+  const std::size_t cells = static_cast<std::size_t>(stride) * static_cast<std::size_t>(strip_rows);
+  if (s.block.size() < cells) s.block.assign(cells, 0.0);  // zero; every sweep leaves it zero
+  const auto extents = static_cast<std::size_t>(2 * strip_rows);
+  if (s.extent.size() < extents) s.extent.resize(extents);
+  const RowBatchBuffers out = row_batch_buffers(s.batch, s.coverage, strip_rows, stride);
+  // A small fill's pixels may be fetched while its cells are accumulated; most of a thin shape's box is not drawn.
+  if (strip_rows == y_to - y_from) sink.expect(y_from, y_to, x_base, x_base + columns);
+  with_rule(rule, [&](auto r) {
+    for (int y = y_from; y < y_to; y += strip_rows) {
+      sweep_dense_rows<decltype(r)::value>(edges, y, std::min(y + strip_rows, y_to), x_base, columns, width,
+                                           s.block.data(), s.extent.data(), out, sink);
+    }
+  });
+}
+
 bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink) {
   if (!fits_dense(edges_, y_min_, y_max_, columns, dense_limit_)) return false;
-  const std::int64_t cells = static_cast<std::int64_t>(dense_stride(columns)) * (y_max_ - y_min_);
-  if (dense_block_.size() < static_cast<std::size_t>(cells)) dense_block_.assign(static_cast<std::size_t>(cells), 0.0);
-  const auto extents = static_cast<std::size_t>(2 * (y_max_ - y_min_));
-  if (dense_extent_.size() < extents) dense_extent_.resize(extents);
-  double* block = dense_block_.data();
-  const RowBatchBuffers out = row_batch_buffers(dense_batch_, row_coverage_, y_max_ - y_min_, dense_stride(columns));
-  with_rule(rule, [&](auto r) {
-    sweep_dense_rows<decltype(r)::value>(edges_, y_min_, y_max_, x_base, columns, width, block,
-                                         dense_extent_.data(), out, sink);
-  });
+  sweep_dense_range(rule, edges_, y_min_, y_max_, x_base, columns, width,
+                    {dense_block_, dense_extent_, dense_batch_, row_coverage_}, sink);
   return true;
 }
 
-// Rows [y_from, y_to) of a queued dense fill: the dense sweep over those rows alone. Each row's cells take the pieces
-// of the edges inside that row (in edge order) and its own running sum, so a block of fewer rows gives those rows'
-// bits exactly.
+// Rows [y_from, y_to) of a queued dense fill.
 void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s) {
-  const std::size_t cells =
-      static_cast<std::size_t>(dense_stride(fill.columns)) * static_cast<std::size_t>(y_to - y_from);
-  if (s.dense_block.size() < cells) s.dense_block.assign(cells, 0.0);
-  const auto extents = static_cast<std::size_t>(2 * (y_to - y_from));
-  if (s.dense_extent.size() < extents) s.dense_extent.resize(extents);
-  const RowBatchBuffers out = row_batch_buffers(s.batch, s.coverage, y_to - y_from, dense_stride(fill.columns));
-  with_rule(fill.rule, [&](auto r) {
-    sweep_dense_rows<decltype(r)::value>(fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width,
-                                         s.dense_block.data(), s.dense_extent.data(), out, *fill.sink);
-  });
+  sweep_dense_range(fill.rule, fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width,
+                    {s.dense_block, s.dense_extent, s.batch, s.coverage}, *fill.sink);
 }
 
 // The columns the edges reach: cells [x_base, x_base + columns) hold every cell an edge can write (the last edge's
