@@ -12,6 +12,7 @@
 #include <random>
 
 #include "paint/blend.hpp"
+#include "paint/over8_avx2.hpp"
 #include "raster/cells.hpp"
 #include "raster/cpu.hpp"
 #include "support/capture.hpp"
@@ -243,6 +244,34 @@ void expect_portable_bits(detail::Over8ConstantFn constant, detail::Over8SolidFn
   EXPECT_EQ(runs, (kMax + 1) * 8);
 }
 #endif
+
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+// The vector loops divide by 255 as the high half of (a f + 128) * 257; scale8 does it with shifts. Every pair.
+[[gnu::target("avx2")]] void expect_scale16_is_scale8() {
+  for (std::uint32_t a = 0; a < 256; ++a) {
+    alignas(32) std::uint16_t f[16], a16[16], out[16];
+    for (std::uint32_t f0 = 0; f0 < 256; f0 += 16) {
+      for (std::uint32_t i = 0; i < 16; ++i) {
+        f[i] = static_cast<std::uint16_t>(f0 + i);
+        a16[i] = static_cast<std::uint16_t>(a);
+      }
+      const __m256i r = detail::avx2::scale16(_mm256_load_si256(reinterpret_cast<const __m256i*>(a16)),
+                                              _mm256_load_si256(reinterpret_cast<const __m256i*>(f)));
+      _mm256_store_si256(reinterpret_cast<__m256i*>(out), r);
+      for (std::uint32_t i = 0; i < 16; ++i) ASSERT_EQ(out[i], detail::scale8(a, f0 + i)) << a << " x " << f0 + i;
+    }
+  }
+}
+#endif
+
+TEST(SourceOverKernels, Avx2ScaleRoundsAsScale8ForEveryPair) {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "no AVX2 on this processor: only the portable loops run";
+  expect_scale16_is_scale8();
+#else
+  GTEST_SKIP() << "no AVX2 kernels in this build";
+#endif
+}
 
 TEST(SourceOverKernels, Avx2GivesThePortableBitsOnEveryLengthAndAlignment) {
 #ifdef VRASTER_HAVE_AVX2_KERNELS

@@ -17,10 +17,11 @@ namespace {
 
 #define VRASTER_AVX512 [[gnu::target("avx512f,avx512bw,avx512vl"), gnu::always_inline]] inline
 
-// round(a * f / 255) per 16-bit lane for a, f in [0, 255] (scale8's form).
+// round(a * f / 255) per 16-bit lane for a, f in [0, 255] (scale8's form, as the high half of t * 257: see
+// over8_avx2.hpp's scale16).
 VRASTER_AVX512 __m512i scale32(__m512i a, __m512i f) {
   const __m512i t = _mm512_add_epi16(_mm512_mullo_epi16(a, f), _mm512_set1_epi16(128));
-  return _mm512_srli_epi16(_mm512_add_epi16(t, _mm512_srli_epi16(t, 8)), 8);
+  return _mm512_mulhi_epu16(t, _mm512_set1_epi16(257));
 }
 
 // 255 - alpha of every pixel, spread over its four lanes (alpha is lane 3 of each pixel).
