@@ -19,8 +19,7 @@ using namespace avx2;
   int i = to_aligned32(px, n);
   if (i > 0) {
     const __m256i m = first_lanes(i);
-    _mm256_maskstore_epi32(reinterpret_cast<int*>(px), m,
-                           over_constant8(_mm256_maskload_epi32(reinterpret_cast<const int*>(px), m), src, inv));
+    store_first(px, over_constant8(_mm256_maskload_epi32(reinterpret_cast<const int*>(px), m), src, inv), i);
   }
   for (; i + 8 <= n; i += 8) {
     p = reinterpret_cast<__m256i*>(px + i);
@@ -28,8 +27,8 @@ using namespace avx2;
   }
   if (i < n) {
     const __m256i m = first_lanes(n - i);
-    int* q = reinterpret_cast<int*>(px + i);
-    _mm256_maskstore_epi32(q, m, over_constant8(_mm256_maskload_epi32(q, m), src, inv));
+    store_first(px + i, over_constant8(_mm256_maskload_epi32(reinterpret_cast<const int*>(px + i), m), src, inv),
+                n - i);
   }
 }
 
@@ -46,9 +45,8 @@ using namespace avx2;
   }
   if (i < n) {
     const __m256i m = first_lanes(n - i);
-    int* q = reinterpret_cast<int*>(px + i);
     const __m256i k = quantize8x8(_mm256_maskload_ps(coverage + i, m), sc);
-    _mm256_maskstore_epi32(q, m, over_coverage8(_mm256_maskload_epi32(q, m), c16, k));
+    store_first(px + i, over_coverage8(_mm256_maskload_epi32(reinterpret_cast<const int*>(px + i), m), c16, k), n - i);
   }
 }
 
