@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "raster/cpu.hpp"
 #include "support/capture.hpp"
 #include "vraster/error.hpp"
 
@@ -94,6 +95,33 @@ TEST(MaskFill, MatchesTheRowSweepWithinOneLevelInsideTheMask) {
     }
   }
   EXPECT_EQ(compared, 1800);
+}
+
+// The row pass in AVX2 (where the processor has it) adds in the SSE2 pass's order: the same bytes, on every rule and
+// width (the steps of eight, the tail, the cells past the width).
+TEST(MaskFill, TheAvx2RowPassGivesTheSseBytes) {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "no AVX2 on this processor: only the SSE2 row pass runs";
+  std::mt19937 rng(23);
+  Rasterizer r;
+  int compared = 0;
+  for (int it = 0; it < 300; ++it) {
+    const int w = 1 + static_cast<int>(rng() % 70), h = 1 + static_cast<int>(rng() % 40);
+    const Polylines lines = flattened(random_polygon(rng, 0, std::min(w, h)));
+    for (FillRule rule : kRules) {
+      if (rule == FillRule::NonExterior) continue;  // takes the general sweep
+      const std::vector<std::uint8_t> avx2 = mask_bytes(r, lines, rule, w, h);
+      detail::portable_kernels_forced() = true;
+      const std::vector<std::uint8_t> sse = mask_bytes(r, lines, rule, w, h);
+      detail::portable_kernels_forced() = false;
+      ASSERT_EQ(avx2, sse) << "iteration " << it << " rule " << to_string(rule) << " size " << w << "x" << h;
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 300 * 5);
+#else
+  GTEST_SKIP() << "no AVX2 kernels in this build";
+#endif
 }
 
 TEST(MaskFill, MatchesTheRowSweepForPathsReachingOutsideTheMask) {

@@ -230,6 +230,69 @@ void resolve_rows(float* block, int padded, int rows, int width, std::uint8_t* o
   }
 }
 
+#if VRASTER_MASK_SSE2 && defined(VRASTER_HAVE_AVX2_KERNELS)
+// The row pass eight cells a step in one AVX2 register (picked at run time), with resolve8's additions in resolve8's
+// order: each half's running sum, the low half's total added to the high half, then the carry. So the same floats
+// and the same bytes; about a third fewer instructions a step (a fifth of a 64 px glyph's time is this pass).
+template <FillRule R>
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256 coverage8(__m256 s) {
+  const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+  const __m256 sign = _mm256_set1_ps(-0.0f);
+  if constexpr (R == FillRule::EvenOdd) {
+    __m256 a = _mm256_andnot_ps(sign, s);
+    const __m256 halves = _mm256_cvtepi32_ps(_mm256_cvttps_epi32(_mm256_mul_ps(a, _mm256_set1_ps(0.5f))));
+    a = _mm256_sub_ps(a, _mm256_add_ps(halves, halves));
+    return _mm256_sub_ps(one, _mm256_andnot_ps(sign, _mm256_sub_ps(a, one)));
+  } else if constexpr (R == FillRule::Positive) {
+    return _mm256_min_ps(_mm256_max_ps(s, zero), one);
+  } else if constexpr (R == FillRule::Negative) {
+    return _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(zero, s), zero), one);
+  } else if constexpr (R == FillRule::AbsGeq2) {
+    return _mm256_min_ps(_mm256_max_ps(_mm256_sub_ps(_mm256_andnot_ps(sign, s), one), zero), one);
+  } else {
+    return _mm256_min_ps(_mm256_andnot_ps(sign, s), one);
+  }
+}
+
+// Eight cells -> eight bytes, as resolve8; the cells are set back to 0.
+template <FillRule R>
+[[gnu::target("avx2"), gnu::always_inline]] inline __m128i resolve8_avx2(float* cells, __m256& carry) {
+  __m256 v = _mm256_loadu_ps(cells);
+  // prefix4 in each half, then the low half's last sum broadcast into the high half (zero in the low half).
+  v = _mm256_add_ps(v, _mm256_castsi256_ps(_mm256_slli_si256(_mm256_castps_si256(v), 4)));
+  v = _mm256_add_ps(v, _mm256_castsi256_ps(_mm256_slli_si256(_mm256_castps_si256(v), 8)));
+  const __m256 low_total = _mm256_permute2f128_ps(v, v, 0x08);  // [0 | low half]
+  v = _mm256_blend_ps(v, _mm256_add_ps(v, _mm256_shuffle_ps(low_total, low_total, _MM_SHUFFLE(3, 3, 3, 3))), 0xF0);
+  v = _mm256_add_ps(v, carry);
+  carry = _mm256_permutevar8x32_ps(v, _mm256_set1_epi32(7));
+  _mm256_storeu_ps(cells, _mm256_setzero_ps());
+  const __m256i levels = _mm256_cvttps_epi32(
+      _mm256_add_ps(_mm256_mul_ps(coverage8<R>(v), _mm256_set1_ps(255.0f)), _mm256_set1_ps(0.5f)));
+  const __m128i words = _mm_packs_epi32(_mm256_castsi256_si128(levels), _mm256_extracti128_si256(levels, 1));
+  return _mm_packus_epi16(words, words);
+}
+
+template <FillRule R>
+[[gnu::target("avx2")]] void resolve_rows_avx2(float* block, int padded, int rows, int width, std::uint8_t* out,
+                                                std::ptrdiff_t stride) {
+  for (int r = 0; r < rows; ++r, out += stride) {
+    float* cells = block + static_cast<std::ptrdiff_t>(r) * padded;
+    __m256 carry = _mm256_setzero_ps();
+    int c = 0;
+    for (; c + kCellBlock <= width; c += kCellBlock) {
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(out + c), resolve8_avx2<R>(cells + c, carry));
+    }
+    if (c < width) {
+      alignas(16) std::uint8_t tail[16];
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(tail), resolve8_avx2<R>(cells + c, carry));
+      copy_short(out + c, tail, width - c);
+      c += kCellBlock;
+    }
+    for (; c < padded; c += kCellBlock) _mm256_storeu_ps(cells + c, _mm256_setzero_ps());
+  }
+}
+#endif
+
 // The general sweep's coverage into bytes (paths reaching outside the mask, NonExterior, huge masks).
 class ByteMaskSink final : public CoverageSink {
  public:
@@ -338,6 +401,9 @@ void detail::RasterizerImpl::fill_mask(const Polylines& lines, FillRule rule, in
   std::uint8_t* out = mask + row_lo * stride;
   const int rows = row_hi - row_lo;
   detail::with_rule(rule, [&](auto r) {
+#if VRASTER_MASK_SSE2 && defined(VRASTER_HAVE_AVX2_KERNELS)
+    if (detail::cpu_has_avx2()) return resolve_rows_avx2<decltype(r)::value>(block, padded, rows, width, out, stride);
+#endif
     resolve_rows<decltype(r)::value>(block, padded, rows, width, out, stride);
   });
 }
