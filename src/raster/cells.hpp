@@ -270,6 +270,16 @@ inline Choice choice(bool first) { return first; }
 inline double pick(Choice c, double first, double second) { return c ? first : second; }
 #endif
 
+// The adds of a piece within three cells, from cell i0 on (accumulate_piece's split; the order of additions is
+// the general split's).
+[[gnu::always_inline]] inline void accumulate_split(double* acc, int i0, double add0, double add1, double then1,
+                                                    double add2, double then2, double add3) {
+  acc[i0] += add0;
+  acc[i0 + 1] = (acc[i0 + 1] + add1) + then1;
+  acc[i0 + 2] = (acc[i0 + 2] + add2) + then2;
+  acc[i0 + 3] += add3;
+}
+
 template <bool kChoose = false, bool kAvx2 = false>
 [[gnu::always_inline]] inline void accumulate_piece(double* acc, double xa, double xb, double h) {
   const double xl = std::min(xa, xb), xr = std::max(xa, xb);
@@ -300,10 +310,7 @@ template <bool kChoose = false, bool kAvx2 = false>
   const double add2 = pick(two_cells, last1, pick(three_cells, half, 0.0));
   const double then2 = pick(three_cells, last0, 0.0);
   const double add3 = pick(three_cells, last1, 0.0);
-  acc[i0] += add0;
-  acc[i0 + 1] = (acc[i0 + 1] + add1) + then1;
-  acc[i0 + 2] = (acc[i0 + 2] + add2) + then2;
-  acc[i0 + 3] += add3;
+  accumulate_split(acc, i0, add0, add1, then1, add2, then2, add3);
 }
 
 [[gnu::always_inline]] inline void mark_cells(std::uint64_t* bits, int from, int to) {  // inclusive range

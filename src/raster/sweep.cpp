@@ -156,6 +156,60 @@ inline int piece_last_cell(double xa, double xb) { return static_cast<int>(std::
   }
   return ends == 0;
 }
+
+// accumulate_piece<true>'s split of every active edge's piece in the row, four edges a step, into the columns
+// first_cell, cells_past and add0 .. add3: the same operations on the same numbers (minpd / maxpd with the operands
+// below give std::min / std::max's values, pick is a blend, there is no FMA), so the cells get the same bits. Also
+// the row's first and last touched cells, pieces of height 0 left out. Lanes past the list compute into the
+// padding and count for nothing.
+[[gnu::target("avx2")]] inline void split_pieces_avx2(detail::ActiveEdges& a, int& x_lo, int& x_hi) {
+  const __m256d half = _mm256_set1_pd(0.5), one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+  const __m256d tiny = _mm256_set1_pd(0x1p-1000);
+  const __m256i to_low_lanes = _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0);
+  const __m128i lanes = _mm_setr_epi32(0, 1, 2, 3);
+  __m128i lo = _mm_set1_epi32(std::numeric_limits<int>::max()), hi = _mm_set1_epi32(std::numeric_limits<int>::min());
+  for (std::size_t k = 0; k < a.size; k += 4) {
+    const __m256d xa = _mm256_loadu_pd(&a.x[k]), xb = _mm256_loadu_pd(&a.xb[k]), h = _mm256_loadu_pd(&a.h[k]);
+    const __m256d xl = _mm256_min_pd(xb, xa), xr = _mm256_max_pd(xb, xa);  // std::min(xa, xb), std::max(xa, xb)
+    const __m128i i0 = _mm256_cvttpd_epi32(xl), ir = _mm256_cvttpd_epi32(xr);
+    const __m128i cells_past = _mm_sub_epi32(ir, i0);
+    const __m256d first = _mm256_cvtepi32_pd(i0);
+    const __m256d per_x = _mm256_div_pd(h, _mm256_max_pd(tiny, _mm256_sub_pd(xr, xl)));
+    const __m256d f0 = _mm256_sub_pd(_mm256_add_pd(first, one), xl);
+    const __m256d h0 = _mm256_mul_pd(per_x, f0), m0 = _mm256_sub_pd(one, _mm256_mul_pd(half, f0));
+    const __m256d f1 = _mm256_sub_pd(xr, _mm256_cvtepi32_pd(ir));
+    const __m256d h1 = _mm256_mul_pd(per_x, f1), m1 = _mm256_mul_pd(half, f1);
+    const __m256d whole = _mm256_mul_pd(half, per_x);
+    const __m256d m = _mm256_sub_pd(_mm256_mul_pd(half, _mm256_add_pd(xl, xr)), first);
+    const __m256d last0 = _mm256_mul_pd(h1, _mm256_sub_pd(one, m1)), last1 = _mm256_mul_pd(h1, m1);
+    const __m256d one_cell = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpeq_epi32(cells_past, _mm_set1_epi32(0))));
+    const __m256d two_cells = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpeq_epi32(cells_past, _mm_set1_epi32(1))));
+    const __m256d three_cells =
+        _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpeq_epi32(cells_past, _mm_set1_epi32(2))));
+    const __m256d middle = _mm256_and_pd(three_cells, whole);
+    _mm256_storeu_pd(&a.add0[k], _mm256_blendv_pd(_mm256_mul_pd(h0, _mm256_sub_pd(one, m0)),
+                                                  _mm256_mul_pd(h, _mm256_sub_pd(one, m)), one_cell));
+    _mm256_storeu_pd(&a.add1[k], _mm256_blendv_pd(_mm256_mul_pd(h0, m0), _mm256_mul_pd(h, m), one_cell));
+    _mm256_storeu_pd(&a.then1[k], _mm256_blendv_pd(middle, last0, two_cells));
+    _mm256_storeu_pd(&a.add2[k], _mm256_blendv_pd(middle, last1, two_cells));
+    _mm256_storeu_pd(&a.then2[k], _mm256_and_pd(three_cells, last0));
+    _mm256_storeu_pd(&a.add3[k], _mm256_and_pd(three_cells, last1));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(&a.first_cell[k]), i0);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(&a.cells_past[k]), cells_past);
+    // The touched cells: from the first cell to the one after the right end's (piece_first_cell, piece_last_cell).
+    const __m256i piece = _mm256_castpd_si256(_mm256_cmp_pd(h, zero, _CMP_NEQ_UQ));  // hs[k] == 0: no piece
+    const __m128i counted = _mm_and_si128(_mm256_castsi256_si128(_mm256_permutevar8x32_epi32(piece, to_low_lanes)),
+                                          _mm_cmpgt_epi32(_mm_set1_epi32(static_cast<int>(a.size - k)), lanes));
+    lo = _mm_min_epi32(lo, _mm_blendv_epi8(lo, i0, counted));
+    hi = _mm_max_epi32(hi, _mm_blendv_epi8(hi, _mm_add_epi32(ir, _mm_set1_epi32(1)), counted));
+  }
+  lo = _mm_min_epi32(lo, _mm_shuffle_epi32(lo, 0x4E));
+  lo = _mm_min_epi32(lo, _mm_shuffle_epi32(lo, 0xB1));
+  hi = _mm_max_epi32(hi, _mm_shuffle_epi32(hi, 0x4E));
+  hi = _mm_max_epi32(hi, _mm_shuffle_epi32(hi, 0xB1));
+  x_lo = std::min(x_lo, _mm_cvtsi128_si32(lo));
+  x_hi = std::max(x_hi, _mm_cvtsi128_si32(hi));
+}
 #endif
 
 // A wide row whose pieces lie far apart (the two sides of a circle, the walls of a ring), as clusters: the pieces'
@@ -252,12 +306,30 @@ template <FillRule R, bool kAvx2, bool kChoose>
     const double* const xs = a.x.data();
     const double* const xbs = a.xb.data();
     const double* const hs = a.h.data();
-    for (std::size_t k = 0; k < n; ++k) {
-      if (hs[k] == 0) continue;
-      const double xa = xs[k], xb = xbs[k];
-      accumulate_piece<kChoose, kAvx2>(acc, xa, xb, hs[k]);
-      x_lo = std::min(x_lo, piece_first_cell(xa, xb));
-      x_hi = std::max(x_hi, piece_last_cell(xa, xb));
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+    if constexpr (kAvx2 && kChoose) {
+      // Short edges: the pieces split four at a time, then added one by one (what accumulate_piece<true> does).
+      split_pieces_avx2(a, x_lo, x_hi);
+      for (std::size_t k = 0; k < n; ++k) {
+        if (hs[k] == 0) continue;
+        const int i0 = a.first_cell[k], past = a.cells_past[k];
+        if (past > 2) {
+          detail::accumulate_long_piece<kAvx2>(acc, std::min(xs[k], xbs[k]), std::max(xs[k], xbs[k]), hs[k], i0,
+                                               i0 + past);
+        } else {
+          detail::accumulate_split(acc, i0, a.add0[k], a.add1[k], a.then1[k], a.add2[k], a.then2[k], a.add3[k]);
+        }
+      }
+    } else
+#endif
+    {
+      for (std::size_t k = 0; k < n; ++k) {
+        if (hs[k] == 0) continue;
+        const double xa = xs[k], xb = xbs[k];
+        accumulate_piece<kChoose, kAvx2>(acc, xa, xb, hs[k]);
+        x_lo = std::min(x_lo, piece_first_cell(xa, xb));
+        x_hi = std::max(x_hi, piece_last_cell(xa, xb));
+      }
     }
     // A wide row's touched cells are marked now, while the columns still hold the row's pieces (the pieces' cells
     // again, rather than noted piece by piece: most rows are narrow and need none). A row with pieces close together
