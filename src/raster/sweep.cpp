@@ -6,6 +6,7 @@
 //                     that end in the row
 //   4. per row:       turn the contributions into coverage under the fill rule -> CoverageSink spans
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -155,6 +156,52 @@ inline int piece_last_cell(double xa, double xb) { return static_cast<int>(std::
     ends |= _mm256_movemask_pd(_mm256_andnot_pd(on, _mm256_castsi256_pd(in_list)));
   }
   return ends == 0;
+}
+
+// The edges that end in the row [., bottom) dropped from the columns, four edges a step: the kept lanes of each
+// step packed to the front by one permutation per column (no branch per edge, which was mispredicted about as
+// often as edges end), the others' slots overwritten. The kept edges keep their order and enter the next row
+// where they leave this one (x = xb), as in the scalar loop. A step's stores reach at most its own last slot, so
+// they never overwrite an edge not yet read.
+// The four doubles at p with the lanes `pack` names first (kPack below).
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d packed_lanes(const double* p, __m256i pack) {
+  return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(_mm256_loadu_pd(p)), pack));
+}
+
+[[gnu::target("avx2")]] inline void retire_ended_avx2(detail::ActiveEdges& a, double bottom) {
+  // For each mask of kept lanes, the 32-bit halves of the kept doubles, in order, first.
+  static constexpr auto kPack = [] {
+    std::array<std::array<std::int32_t, 8>, 16> table{};
+    for (int mask = 0; mask < 16; ++mask) {
+      int out = 0;
+      for (int lane = 0; lane < 4; ++lane) {
+        if (mask >> lane & 1) {
+          table[mask][2 * out] = 2 * lane;
+          table[mask][2 * out + 1] = 2 * lane + 1;
+          ++out;
+        }
+      }
+      for (; out < 4; ++out) table[mask][2 * out] = 0, table[mask][2 * out + 1] = 1;
+    }
+    return table;
+  }();
+  const __m256d b = _mm256_set1_pd(bottom);
+  const __m256i lanes = _mm256_setr_epi64x(0, 1, 2, 3);
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < a.size; k += 4) {
+    const __m256i in_list = _mm256_cmpgt_epi64(_mm256_set1_epi64x(static_cast<long long>(a.size - k)), lanes);
+    const __m256d on = _mm256_and_pd(_mm256_cmp_pd(_mm256_loadu_pd(&a.y1[k]), b, _CMP_GT_OQ),
+                                     _mm256_castsi256_pd(in_list));  // the scalar loop's a.y1[k] > bottom
+    const int mask = _mm256_movemask_pd(on);
+    const __m256i pack = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kPack[mask].data()));
+    for (std::vector<double>* column : {&a.x0, &a.y0, &a.dxdy, &a.y1, &a.x1, &a.winding}) {
+      double* c = column->data();
+      _mm256_storeu_pd(c + kept, packed_lanes(c + k, pack));
+    }
+    _mm256_storeu_pd(a.x.data() + kept, packed_lanes(a.xb.data() + k, pack));
+    kept += static_cast<std::size_t>(std::popcount(static_cast<unsigned>(mask)));
+  }
+  a.size = kept;
 }
 
 // accumulate_piece<true>'s split of every active edge's piece in the row, four edges a step, into the columns
@@ -354,6 +401,10 @@ template <FillRule R, bool kAvx2, bool kChoose>
     // in place, in order).
     if (all_go_on) {
       a.x.swap(a.xb);
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+    } else if constexpr (kAvx2) {
+      retire_ended_avx2(a, bottom);
+#endif
     } else {
       std::size_t kept = 0;
       for (std::size_t k = 0; k < n; ++k) {
