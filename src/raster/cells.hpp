@@ -313,6 +313,50 @@ template <bool kChoose = false, bool kAvx2 = false>
   accumulate_split(acc, i0, add0, add1, then1, add2, then2, add3);
 }
 
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+// accumulate_piece<true>'s split of four pieces at once (lane i: from x = xa[i] to xb[i], height h[i]): the first
+// cell, how many cells the right end lies past it, and what cells first .. first + 3 get (accumulate_split's
+// arguments; meaningful where past <= 2). The same operations on the same numbers: minpd / maxpd with the
+// operands below give std::min / std::max's values, pick is a blend, and there is no FMA, so the cells get the
+// same bits as from accumulate_piece.
+// All ones in the (64-bit) lanes where v's (32-bit) lane is k.
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d lanes_where_equal(__m128i v, int k) {
+  return _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpeq_epi32(v, _mm_set1_epi32(k))));
+}
+
+struct Split4 {
+  __m128i first, past;
+  __m256d add0, add1, then1, add2, then2, add3;
+};
+[[gnu::target("avx2"), gnu::always_inline]] inline Split4 split4(__m256d xa, __m256d xb, __m256d h) {
+  const __m256d half = _mm256_set1_pd(0.5), one = _mm256_set1_pd(1.0);
+  const __m256d xl = _mm256_min_pd(xb, xa), xr = _mm256_max_pd(xb, xa);  // std::min(xa, xb), std::max(xa, xb)
+  Split4 p;
+  p.first = _mm256_cvttpd_epi32(xl);
+  const __m128i right = _mm256_cvttpd_epi32(xr);
+  p.past = _mm_sub_epi32(right, p.first);
+  const __m256d first = _mm256_cvtepi32_pd(p.first);
+  const __m256d per_x = _mm256_div_pd(h, _mm256_max_pd(_mm256_set1_pd(0x1p-1000), _mm256_sub_pd(xr, xl)));
+  const __m256d f0 = _mm256_sub_pd(_mm256_add_pd(first, one), xl);
+  const __m256d h0 = _mm256_mul_pd(per_x, f0), m0 = _mm256_sub_pd(one, _mm256_mul_pd(half, f0));
+  const __m256d f1 = _mm256_sub_pd(xr, _mm256_cvtepi32_pd(right));
+  const __m256d h1 = _mm256_mul_pd(per_x, f1), m1 = _mm256_mul_pd(half, f1);
+  const __m256d whole = _mm256_mul_pd(half, per_x);
+  const __m256d m = _mm256_sub_pd(_mm256_mul_pd(half, _mm256_add_pd(xl, xr)), first);
+  const __m256d last0 = _mm256_mul_pd(h1, _mm256_sub_pd(one, m1)), last1 = _mm256_mul_pd(h1, m1);
+  const __m256d one_cell = lanes_where_equal(p.past, 0), two_cells = lanes_where_equal(p.past, 1);
+  const __m256d three_cells = lanes_where_equal(p.past, 2);
+  const __m256d middle = _mm256_and_pd(three_cells, whole);
+  p.add0 = _mm256_blendv_pd(_mm256_mul_pd(h0, _mm256_sub_pd(one, m0)), _mm256_mul_pd(h, _mm256_sub_pd(one, m)), one_cell);
+  p.add1 = _mm256_blendv_pd(_mm256_mul_pd(h0, m0), _mm256_mul_pd(h, m), one_cell);
+  p.then1 = _mm256_blendv_pd(middle, last0, two_cells);
+  p.add2 = _mm256_blendv_pd(middle, last1, two_cells);
+  p.then2 = _mm256_and_pd(three_cells, last0);
+  p.add3 = _mm256_and_pd(three_cells, last1);
+  return p;
+}
+#endif
+
 [[gnu::always_inline]] inline void mark_cells(std::uint64_t* bits, int from, int to) {  // inclusive range
   int w0 = from >> 6, w1 = to >> 6;
   const std::uint64_t first = ~std::uint64_t{0} << (from & 63);

@@ -204,51 +204,30 @@ inline int piece_last_cell(double xa, double xb) { return static_cast<int>(std::
   a.size = kept;
 }
 
-// accumulate_piece<true>'s split of every active edge's piece in the row, four edges a step, into the columns
-// first_cell, cells_past and add0 .. add3: the same operations on the same numbers (minpd / maxpd with the operands
-// below give std::min / std::max's values, pick is a blend, there is no FMA), so the cells get the same bits. Also
-// the row's first and last touched cells, pieces of height 0 left out. Lanes past the list compute into the
-// padding and count for nothing.
+// accumulate_piece<true>'s split of every active edge's piece in the row, four edges a step (detail::split4), into
+// the columns first_cell, cells_past and add0 .. add3. Also the row's first and last touched cells, pieces of height
+// 0 left out. Lanes past the list compute into the padding and count for nothing.
 [[gnu::target("avx2")]] inline void split_pieces_avx2(detail::ActiveEdges& a, int& x_lo, int& x_hi) {
-  const __m256d half = _mm256_set1_pd(0.5), one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
-  const __m256d tiny = _mm256_set1_pd(0x1p-1000);
   const __m256i to_low_lanes = _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0);
   const __m128i lanes = _mm_setr_epi32(0, 1, 2, 3);
   __m128i lo = _mm_set1_epi32(std::numeric_limits<int>::max()), hi = _mm_set1_epi32(std::numeric_limits<int>::min());
   for (std::size_t k = 0; k < a.size; k += 4) {
-    const __m256d xa = _mm256_loadu_pd(&a.x[k]), xb = _mm256_loadu_pd(&a.xb[k]), h = _mm256_loadu_pd(&a.h[k]);
-    const __m256d xl = _mm256_min_pd(xb, xa), xr = _mm256_max_pd(xb, xa);  // std::min(xa, xb), std::max(xa, xb)
-    const __m128i i0 = _mm256_cvttpd_epi32(xl), ir = _mm256_cvttpd_epi32(xr);
-    const __m128i cells_past = _mm_sub_epi32(ir, i0);
-    const __m256d first = _mm256_cvtepi32_pd(i0);
-    const __m256d per_x = _mm256_div_pd(h, _mm256_max_pd(tiny, _mm256_sub_pd(xr, xl)));
-    const __m256d f0 = _mm256_sub_pd(_mm256_add_pd(first, one), xl);
-    const __m256d h0 = _mm256_mul_pd(per_x, f0), m0 = _mm256_sub_pd(one, _mm256_mul_pd(half, f0));
-    const __m256d f1 = _mm256_sub_pd(xr, _mm256_cvtepi32_pd(ir));
-    const __m256d h1 = _mm256_mul_pd(per_x, f1), m1 = _mm256_mul_pd(half, f1);
-    const __m256d whole = _mm256_mul_pd(half, per_x);
-    const __m256d m = _mm256_sub_pd(_mm256_mul_pd(half, _mm256_add_pd(xl, xr)), first);
-    const __m256d last0 = _mm256_mul_pd(h1, _mm256_sub_pd(one, m1)), last1 = _mm256_mul_pd(h1, m1);
-    const __m256d one_cell = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpeq_epi32(cells_past, _mm_set1_epi32(0))));
-    const __m256d two_cells = _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpeq_epi32(cells_past, _mm_set1_epi32(1))));
-    const __m256d three_cells =
-        _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpeq_epi32(cells_past, _mm_set1_epi32(2))));
-    const __m256d middle = _mm256_and_pd(three_cells, whole);
-    _mm256_storeu_pd(&a.add0[k], _mm256_blendv_pd(_mm256_mul_pd(h0, _mm256_sub_pd(one, m0)),
-                                                  _mm256_mul_pd(h, _mm256_sub_pd(one, m)), one_cell));
-    _mm256_storeu_pd(&a.add1[k], _mm256_blendv_pd(_mm256_mul_pd(h0, m0), _mm256_mul_pd(h, m), one_cell));
-    _mm256_storeu_pd(&a.then1[k], _mm256_blendv_pd(middle, last0, two_cells));
-    _mm256_storeu_pd(&a.add2[k], _mm256_blendv_pd(middle, last1, two_cells));
-    _mm256_storeu_pd(&a.then2[k], _mm256_and_pd(three_cells, last0));
-    _mm256_storeu_pd(&a.add3[k], _mm256_and_pd(three_cells, last1));
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(&a.first_cell[k]), i0);
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(&a.cells_past[k]), cells_past);
+    const __m256d h = _mm256_loadu_pd(&a.h[k]);
+    const detail::Split4 p = detail::split4(_mm256_loadu_pd(&a.x[k]), _mm256_loadu_pd(&a.xb[k]), h);
+    _mm256_storeu_pd(&a.add0[k], p.add0);
+    _mm256_storeu_pd(&a.add1[k], p.add1);
+    _mm256_storeu_pd(&a.then1[k], p.then1);
+    _mm256_storeu_pd(&a.add2[k], p.add2);
+    _mm256_storeu_pd(&a.then2[k], p.then2);
+    _mm256_storeu_pd(&a.add3[k], p.add3);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(&a.first_cell[k]), p.first);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(&a.cells_past[k]), p.past);
     // The touched cells: from the first cell to the one after the right end's (piece_first_cell, piece_last_cell).
-    const __m256i piece = _mm256_castpd_si256(_mm256_cmp_pd(h, zero, _CMP_NEQ_UQ));  // hs[k] == 0: no piece
+    const __m256i piece = _mm256_castpd_si256(_mm256_cmp_pd(h, _mm256_setzero_pd(), _CMP_NEQ_UQ));  // h == 0: none
     const __m128i counted = _mm_and_si128(_mm256_castsi256_si128(_mm256_permutevar8x32_epi32(piece, to_low_lanes)),
                                           _mm_cmpgt_epi32(_mm_set1_epi32(static_cast<int>(a.size - k)), lanes));
-    lo = _mm_min_epi32(lo, _mm_blendv_epi8(lo, i0, counted));
-    hi = _mm_max_epi32(hi, _mm_blendv_epi8(hi, _mm_add_epi32(ir, _mm_set1_epi32(1)), counted));
+    lo = _mm_min_epi32(lo, _mm_blendv_epi8(lo, p.first, counted));
+    hi = _mm_max_epi32(hi, _mm_blendv_epi8(hi, _mm_add_epi32(_mm_add_epi32(p.first, p.past), _mm_set1_epi32(1)), counted));
   }
   lo = _mm_min_epi32(lo, _mm_shuffle_epi32(lo, 0x4E));
   lo = _mm_min_epi32(lo, _mm_shuffle_epi32(lo, 0xB1));
@@ -472,6 +451,71 @@ constexpr int kTrimmedDenseColumns = 24;
 constexpr int dense_stride(int columns) { return (columns + 3) & ~3; }
 static_assert(kTrimmedDenseColumns <= 32, "a narrow block's row fits sweep_narrow_row's nonzero mask");
 
+constexpr int kWalkMinRows = 3;
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+// The scalar walk below (sweep_dense_block) four rows a step: the x where edge e leaves each of rows y .. y + 3
+// computed as Edge::x_at computes it (no FMA; minpd / maxpd in the operand order of leave_row_avx2), the four pieces
+// split at once (split4) and added row by row, so every cell gets the numbers and the order of the scalar walk.
+// Rows from r1 on are left alone.
+template <bool kTrimmed>
+[[gnu::target("avx2")]] inline void walk_edge_avx2(const Edge& e, int r0, int r1, int y_min,
+                                                                      double shift, double* block, int stride,
+                                                                      int* extent) {
+  double ya = std::max(e.y0, static_cast<double>(r0));
+  double xa = (ya == e.y0 ? e.x0 : e.x_at(ya)) - shift;
+  const __m256d y0 = _mm256_set1_pd(e.y0), y1 = _mm256_set1_pd(e.y1), x0 = _mm256_set1_pd(e.x0);
+  const __m256d x1 = _mm256_set1_pd(e.x1), dxdy = _mm256_set1_pd(e.dxdy), winding = _mm256_set1_pd(e.winding);
+  const __m256d lo = _mm256_min_pd(x1, x0), hi = _mm256_max_pd(x1, x0), to_cells = _mm256_set1_pd(shift);
+  const __m256d bottoms = _mm256_setr_pd(1, 2, 3, 4);
+  const __m128i lanes = _mm_setr_epi32(0, 1, 2, 3);
+  alignas(32) double xas[4], xbs[4], hs[4], add0[4], add1[4], then1[4], add2[4], then2[4], add3[4];
+  alignas(16) std::int32_t first[4], past[4];
+  for (int y = r0; y < r1; y += 4) {
+    // Row y + i ends at min(y1, y + i + 1) (std::min's operand order); it is left at x1 at the edge's end.
+    const __m256d yb = _mm256_min_pd(_mm256_add_pd(_mm256_set1_pd(y), bottoms), y1);
+    __m256d x = _mm256_add_pd(x0, _mm256_mul_pd(_mm256_sub_pd(yb, y0), dxdy));
+    x = _mm256_min_pd(hi, _mm256_max_pd(x, lo));
+    const __m256d xb = _mm256_sub_pd(_mm256_blendv_pd(x, x1, _mm256_cmp_pd(yb, y1, _CMP_EQ_OQ)), to_cells);
+    // Each row starts where the one above ends.
+    const __m256d ya4 = _mm256_blend_pd(_mm256_permute4x64_pd(yb, 0x90), _mm256_set1_pd(ya), 0x1);
+    const __m256d xa4 = _mm256_blend_pd(_mm256_permute4x64_pd(xb, 0x90), _mm256_set1_pd(xa), 0x1);
+    const __m256d h = _mm256_mul_pd(_mm256_sub_pd(yb, ya4), winding);
+    const detail::Split4 p = detail::split4(xa4, xb, h);
+    const __m256i in_rows = _mm256_cvtepi32_epi64(_mm_cmpgt_epi32(_mm_set1_epi32(r1 - y), lanes));
+    const int pieces =
+        _mm256_movemask_pd(_mm256_and_pd(_mm256_cmp_pd(yb, ya4, _CMP_GT_OQ), _mm256_castsi256_pd(in_rows)));
+    _mm256_store_pd(xas, xa4);
+    _mm256_store_pd(xbs, xb);
+    _mm256_store_pd(hs, h);
+    _mm256_store_pd(add0, p.add0);
+    _mm256_store_pd(add1, p.add1);
+    _mm256_store_pd(then1, p.then1);
+    _mm256_store_pd(add2, p.add2);
+    _mm256_store_pd(then2, p.then2);
+    _mm256_store_pd(add3, p.add3);
+    _mm_store_si128(reinterpret_cast<__m128i*>(first), p.first);
+    _mm_store_si128(reinterpret_cast<__m128i*>(past), p.past);
+    for (int i = 0; i < 4; ++i) {
+      if (!(pieces >> i & 1)) continue;
+      double* const row = block + static_cast<std::size_t>(y + i - y_min) * stride;
+      if (past[i] > 2) {
+        detail::accumulate_long_piece<true>(row, std::min(xas[i], xbs[i]), std::max(xas[i], xbs[i]), hs[i], first[i],
+                                            first[i] + past[i]);
+      } else {
+        detail::accumulate_split(row, first[i], add0[i], add1[i], then1[i], add2[i], then2[i], add3[i]);
+      }
+      if constexpr (kTrimmed) {
+        int* row_extent = extent + 2 * (y + i - y_min);
+        row_extent[0] = std::min(row_extent[0], first[i]);
+        row_extent[1] = std::max(row_extent[1], first[i] + past[i] + 1);
+      }
+    }
+    ya = yb[3];
+    xa = xbs[3];
+  }
+}
+#endif
+
 // kAvx2: compiled into an AVX2 function (sweep_dense_rows_avx2), whose narrow blocks' rows take sweep_narrow_row's
 // AVX2 blocks and its mask of nonzero coverage (no trimming loops).
 template <FillRule R, bool kTrimmed, bool kAvx2>
@@ -491,6 +535,14 @@ template <FillRule R, bool kTrimmed, bool kAvx2>
     const int r0 = std::max(static_cast<int>(std::floor(e.y0)), y_min);
     const int r1 = std::min(static_cast<int>(std::ceil(e.y1)), y_max);
     if (r0 >= r1) continue;  // outside this strip or band
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+    if constexpr (kAvx2) {
+      if (r1 - r0 >= kWalkMinRows && e.x0 != e.x1) {
+        walk_edge_avx2<kTrimmed>(e, r0, r1, y_min, shift, block, stride, extent);
+        continue;
+      }
+    }
+#endif
     // The edge's piece in row y runs from (ya, xa) to (yb, xb): ya = max(y0, y), yb = min(y1, y + 1), x at each
     // (x0, x1 at the ends). Below the first row ya is y, the previous row's yb: its x is carried, not computed again.
     double ya = std::max(e.y0, static_cast<double>(r0));
