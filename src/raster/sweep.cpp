@@ -85,19 +85,6 @@ struct RowBuffers {
   detail::RowBatchBuffers batch;  // the narrow rows waiting for the sink, kNarrowRowCoverage floats a row
 };
 
-// Whether a fill's edges are short (on average under kLongEdgeRows rows, judged on up to 256 of them). Pieces of
-// short edges (polygons, flattened curves) split into one, two or three cells in no pattern a branch predictor
-// learns, so accumulate_piece chooses without branches there (10-15% faster on such fills, docs/performance.md);
-// long straight edges (stars, slivers) repeat their pattern row after row and go faster with the branches.
-constexpr double kLongEdgeRows = 128;
-bool short_edges(const std::vector<Edge>& edges) {
-  const std::size_t step = edges.size() / 256 + 1;
-  double rows = 0;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < edges.size(); i += step, ++n) rows += edges[i].y1 - edges[i].y0;
-  return rows < kLongEdgeRows * static_cast<double>(n);
-}
-
 // The first and the last cell a piece from x = xa to x = xb adds to (accumulate_piece: the cell of its left end, and
 // the one after the cell of its right end).
 inline int piece_first_cell(double xa, double xb) { return static_cast<int>(std::min(xa, xb)); }
@@ -204,7 +191,7 @@ inline int piece_last_cell(double xa, double xb) { return static_cast<int>(std::
   a.size = kept;
 }
 
-// accumulate_piece<true>'s split of every active edge's piece in the row, four edges a step (detail::split4), into
+// accumulate_piece's split of every active edge's piece in the row, four edges a step (detail::split4), into
 // the columns first_cell, cells_past and add0 .. add3. Also the row's first and last touched cells, pieces of height
 // 0 left out. Lanes past the list compute into the padding and count for nothing.
 [[gnu::target("avx2")]] inline void split_pieces_avx2(detail::ActiveEdges& a, int& x_lo, int& x_hi) {
@@ -285,7 +272,7 @@ template <FillRule R, bool kAvx2>
   }
 }
 
-template <FillRule R, bool kAvx2, bool kChoose>
+template <FillRule R, bool kAvx2>
 [[gnu::always_inline]] inline void sweep_analytic_rows(const detail::EdgeTableView& table, const RowBuffers& b,
                                                        int y_from, int y_to, int width, CoverageSink& sink) {
   const std::vector<Edge>& edges = table.edges;
@@ -333,8 +320,9 @@ template <FillRule R, bool kAvx2, bool kChoose>
     const double* const xbs = a.xb.data();
     const double* const hs = a.h.data();
 #ifdef VRASTER_HAVE_AVX2_KERNELS
-    if constexpr (kAvx2 && kChoose) {
-      // Short edges: the pieces split four at a time, then added one by one (what accumulate_piece<true> does).
+    if constexpr (kAvx2) {
+      // The pieces split four at a time, then added one by one: no branch on how many cells a piece touches (a
+      // branch mispredicted for short edges and, less often, for long ones; stars 6-8 % faster than with it).
       split_pieces_avx2(a, x_lo, x_hi);
       for (std::size_t k = 0; k < n; ++k) {
         if (hs[k] == 0) continue;
@@ -352,7 +340,7 @@ template <FillRule R, bool kAvx2, bool kChoose>
       for (std::size_t k = 0; k < n; ++k) {
         if (hs[k] == 0) continue;
         const double xa = xs[k], xb = xbs[k];
-        accumulate_piece<kChoose, kAvx2>(acc, xa, xb, hs[k]);
+        accumulate_piece(acc, xa, xb, hs[k]);
         x_lo = std::min(x_lo, piece_first_cell(xa, xb));
         x_hi = std::max(x_hi, piece_last_cell(xa, xb));
       }
@@ -419,19 +407,19 @@ template <FillRule R, bool kAvx2, bool kChoose>
   batch.hand_over();
 }
 
-// The row loop compiled for AVX2 (with the AVX2 block for short runs; kChoose: accumulate_piece<kChoose>) and for any
-// x86-64; the AVX2 build has no FMA, the blocks add in one order, and accumulate_piece gives the same bits either
-// way, so all give the same bits.
+// The row loop compiled for AVX2 (the pieces split four at a time, the AVX2 block for short runs) and for any x86-64;
+// the AVX2 build has no FMA, the blocks add in one order, and the split gives accumulate_piece's bits, so both give
+// the same bits.
 template <FillRule R>
 void sweep_analytic_rows_portable(const detail::EdgeTableView& table, const RowBuffers& b, int y_from, int y_to,
                                   int width, CoverageSink& sink) {
-  sweep_analytic_rows<R, false, false>(table, b, y_from, y_to, width, sink);
+  sweep_analytic_rows<R, false>(table, b, y_from, y_to, width, sink);
 }
 #ifdef VRASTER_HAVE_AVX2_KERNELS
-template <FillRule R, bool kChoose>
+template <FillRule R>
 [[gnu::target("avx2")]] void sweep_analytic_rows_avx2(const detail::EdgeTableView& table, const RowBuffers& b,
                                                       int y_from, int y_to, int width, CoverageSink& sink) {
-  sweep_analytic_rows<R, true, kChoose>(table, b, y_from, y_to, width, sink);
+  sweep_analytic_rows<R, true>(table, b, y_from, y_to, width, sink);
 }
 #endif
 
@@ -868,10 +856,7 @@ void detail::RasterizerImpl::sweep_analytic_band(const EdgeTableView& table, Fil
   with_rule(rule, [&](auto r) {
     constexpr FillRule R = decltype(r)::value;
 #ifdef VRASTER_HAVE_AVX2_KERNELS
-    if (detail::cpu_has_avx2()) {
-      if (short_edges(table.edges)) return sweep_analytic_rows_avx2<R, true>(table, buffers, y_from, y_to, width, sink);
-      return sweep_analytic_rows_avx2<R, false>(table, buffers, y_from, y_to, width, sink);
-    }
+    if (detail::cpu_has_avx2()) return sweep_analytic_rows_avx2<R>(table, buffers, y_from, y_to, width, sink);
 #endif
     sweep_analytic_rows_portable<R>(table, buffers, y_from, y_to, width, sink);
   });
