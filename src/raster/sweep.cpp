@@ -717,7 +717,9 @@ void detail::sweep_dense_range(FillRule rule, const std::vector<Edge>& edges, in
   const int stride = dense_stride(columns);
   const int strip_rows =
       static_cast<int>(std::clamp<std::int64_t>(Rasterizer::kDefaultDenseLimit / stride, 1, y_to - y_from));
-  const std::size_t cells = static_cast<std::size_t>(stride) * static_cast<std::size_t>(strip_rows);
+  // (plus kPieceSlack: a piece split without branches adds + 0 to up to 3 cells past the cell after its last, past
+  // the block's last row too)
+  const std::size_t cells = static_cast<std::size_t>(stride) * static_cast<std::size_t>(strip_rows) + detail::kPieceSlack;
   if (s.block.size() < cells) s.block.assign(cells, 0.0);  // zero; every sweep leaves it zero
   const auto extents = static_cast<std::size_t>(2 * strip_rows);
   if (s.extent.size() < extents) s.extent.resize(extents);
