@@ -300,25 +300,8 @@ TEST(SourceOverKernels, Avx512GivesThePortableBitsOnEveryLengthAndAlignment) {
 // Four pieces (lane i into rows[i]) split by split4 and added as the sweeps add them.
 template <int kRow>
 [[gnu::target("avx2")]] void split_into(double (&rows)[4][kRow], const double* xa, const double* xb, const double* h) {
-  const detail::Split4 p = detail::split4(_mm256_load_pd(xa), _mm256_load_pd(xb), _mm256_load_pd(h));
-  alignas(32) double add0[4], add1[4], then1[4], add2[4], then2[4], add3[4];
-  alignas(16) std::int32_t first[4], past[4];
-  _mm256_store_pd(add0, p.add0);
-  _mm256_store_pd(add1, p.add1);
-  _mm256_store_pd(then1, p.then1);
-  _mm256_store_pd(add2, p.add2);
-  _mm256_store_pd(then2, p.then2);
-  _mm256_store_pd(add3, p.add3);
-  _mm_store_si128(reinterpret_cast<__m128i*>(first), p.first);
-  _mm_store_si128(reinterpret_cast<__m128i*>(past), p.past);
-  for (int i = 0; i < 4; ++i) {
-    if (past[i] > 2) {
-      detail::accumulate_long_piece<true>(rows[i], std::min(xa[i], xb[i]), std::max(xa[i], xb[i]), h[i], first[i],
-                                          first[i] + past[i]);
-    } else {
-      detail::accumulate_split(rows[i], first[i], add0[i], add1[i], then1[i], add2[i], then2[i], add3[i]);
-    }
-  }
+  const detail::SplitLanes split(_mm256_load_pd(xa), _mm256_load_pd(xb), _mm256_load_pd(h));
+  for (int i = 0; i < 4; ++i) split.add(i, rows[i]);
 }
 #endif
 

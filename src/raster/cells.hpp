@@ -328,6 +328,37 @@ struct Split4 {
 }
 #endif
 
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+// A split's four lanes in memory, with the pieces' ends and heights, to add the pieces one at a time.
+struct SplitLanes {
+  alignas(32) double xa[4], xb[4], h[4], add0[4], add1[4], then1[4], add2[4], then2[4], add3[4];
+  alignas(16) std::int32_t first[4], past[4];
+  [[gnu::target("avx2"), gnu::always_inline]] SplitLanes(__m256d from_x, __m256d to_x, __m256d height) {
+    const Split4 p = split4(from_x, to_x, height);
+    _mm256_store_pd(xa, from_x);
+    _mm256_store_pd(xb, to_x);
+    _mm256_store_pd(h, height);
+    _mm256_store_pd(add0, p.add0);
+    _mm256_store_pd(add1, p.add1);
+    _mm256_store_pd(then1, p.then1);
+    _mm256_store_pd(add2, p.add2);
+    _mm256_store_pd(then2, p.then2);
+    _mm256_store_pd(add3, p.add3);
+    _mm_store_si128(reinterpret_cast<__m128i*>(first), p.first);
+    _mm_store_si128(reinterpret_cast<__m128i*>(past), p.past);
+  }
+  /// Lane i's piece added to the cells at acc (accumulate_piece's numbers, in its order).
+  [[gnu::target("avx2"), gnu::always_inline]] void add(int i, double* acc) const {
+    if (past[i] > 2) {
+      accumulate_long_piece<true>(acc, std::min(xa[i], xb[i]), std::max(xa[i], xb[i]), h[i], first[i],
+                                  first[i] + past[i]);
+    } else {
+      accumulate_split(acc, first[i], add0[i], add1[i], then1[i], add2[i], then2[i], add3[i]);
+    }
+  }
+};
+#endif
+
 [[gnu::always_inline]] inline void mark_cells(std::uint64_t* bits, int from, int to) {  // inclusive range
   int w0 = from >> 6, w1 = to >> 6;
   const std::uint64_t first = ~std::uint64_t{0} << (from & 63);

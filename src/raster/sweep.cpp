@@ -456,8 +456,6 @@ template <bool kTrimmed>
   const __m256d lo = _mm256_min_pd(x1, x0), hi = _mm256_max_pd(x1, x0), to_cells = _mm256_set1_pd(shift);
   const __m256d bottoms = _mm256_setr_pd(1, 2, 3, 4);
   const __m128i lanes = _mm_setr_epi32(0, 1, 2, 3);
-  alignas(32) double xas[4], xbs[4], hs[4], add0[4], add1[4], then1[4], add2[4], then2[4], add3[4];
-  alignas(16) std::int32_t first[4], past[4];
   for (int y = r0; y < r1; y += 4) {
     // Row y + i ends at min(y1, y + i + 1) (std::min's operand order); it is left at x1 at the edge's end.
     const __m256d yb = _mm256_min_pd(_mm256_add_pd(_mm256_set1_pd(y), bottoms), y1);
@@ -468,38 +466,21 @@ template <bool kTrimmed>
     const __m256d ya4 = _mm256_blend_pd(_mm256_permute4x64_pd(yb, 0x90), _mm256_set1_pd(ya), 0x1);
     const __m256d xa4 = _mm256_blend_pd(_mm256_permute4x64_pd(xb, 0x90), _mm256_set1_pd(xa), 0x1);
     const __m256d h = _mm256_mul_pd(_mm256_sub_pd(yb, ya4), winding);
-    const detail::Split4 p = detail::split4(xa4, xb, h);
+    const detail::SplitLanes split(xa4, xb, h);
     const __m256i in_rows = _mm256_cvtepi32_epi64(_mm_cmpgt_epi32(_mm_set1_epi32(r1 - y), lanes));
     const int pieces =
         _mm256_movemask_pd(_mm256_and_pd(_mm256_cmp_pd(yb, ya4, _CMP_GT_OQ), _mm256_castsi256_pd(in_rows)));
-    _mm256_store_pd(xas, xa4);
-    _mm256_store_pd(xbs, xb);
-    _mm256_store_pd(hs, h);
-    _mm256_store_pd(add0, p.add0);
-    _mm256_store_pd(add1, p.add1);
-    _mm256_store_pd(then1, p.then1);
-    _mm256_store_pd(add2, p.add2);
-    _mm256_store_pd(then2, p.then2);
-    _mm256_store_pd(add3, p.add3);
-    _mm_store_si128(reinterpret_cast<__m128i*>(first), p.first);
-    _mm_store_si128(reinterpret_cast<__m128i*>(past), p.past);
     for (int i = 0; i < 4; ++i) {
       if (!(pieces >> i & 1)) continue;
-      double* const row = block + static_cast<std::size_t>(y + i - y_min) * stride;
-      if (past[i] > 2) {
-        detail::accumulate_long_piece<true>(row, std::min(xas[i], xbs[i]), std::max(xas[i], xbs[i]), hs[i], first[i],
-                                            first[i] + past[i]);
-      } else {
-        detail::accumulate_split(row, first[i], add0[i], add1[i], then1[i], add2[i], then2[i], add3[i]);
-      }
+      split.add(i, block + static_cast<std::size_t>(y + i - y_min) * stride);
       if constexpr (kTrimmed) {
         int* row_extent = extent + 2 * (y + i - y_min);
-        row_extent[0] = std::min(row_extent[0], first[i]);
-        row_extent[1] = std::max(row_extent[1], first[i] + past[i] + 1);
+        row_extent[0] = std::min(row_extent[0], split.first[i]);
+        row_extent[1] = std::max(row_extent[1], split.first[i] + split.past[i] + 1);
       }
     }
     ya = yb[3];
-    xa = xbs[3];
+    xa = split.xb[3];
   }
 }
 #endif
