@@ -318,7 +318,8 @@ struct Split4 {
   const __m256d one_cell = lanes_where_equal(p.past, 0), two_cells = lanes_where_equal(p.past, 1);
   const __m256d three_cells = lanes_where_equal(p.past, 2);
   const __m256d middle = _mm256_and_pd(three_cells, whole);
-  p.add0 = _mm256_blendv_pd(_mm256_mul_pd(h0, _mm256_sub_pd(one, m0)), _mm256_mul_pd(h, _mm256_sub_pd(one, m)), one_cell);
+  p.add0 = _mm256_blendv_pd(_mm256_mul_pd(h0, _mm256_sub_pd(one, m0)), _mm256_mul_pd(h, _mm256_sub_pd(one, m)),
+                            one_cell);
   p.add1 = _mm256_blendv_pd(_mm256_mul_pd(h0, m0), _mm256_mul_pd(h, m), one_cell);
   p.then1 = _mm256_blendv_pd(middle, last0, two_cells);
   p.add2 = _mm256_blendv_pd(middle, last1, two_cells);

@@ -145,16 +145,16 @@ inline int piece_last_cell(double xa, double xb) { return static_cast<int>(std::
   return ends == 0;
 }
 
+// The four doubles at p with the lanes `pack` names first (retire_ended_avx2's kPack).
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d packed_lanes(const double* p, __m256i pack) {
+  return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(_mm256_loadu_pd(p)), pack));
+}
+
 // The edges that end in the row [., bottom) dropped from the columns, four edges a step: the kept lanes of each
 // step packed to the front by one permutation per column (no branch per edge, which was mispredicted about as
 // often as edges end), the others' slots overwritten. The kept edges keep their order and enter the next row
 // where they leave this one (x = xb), as in the scalar loop. A step's stores reach at most its own last slot, so
 // they never overwrite an edge not yet read.
-// The four doubles at p with the lanes `pack` names first (kPack below).
-[[gnu::target("avx2"), gnu::always_inline]] inline __m256d packed_lanes(const double* p, __m256i pack) {
-  return _mm256_castps_pd(_mm256_permutevar8x32_ps(_mm256_castpd_ps(_mm256_loadu_pd(p)), pack));
-}
-
 [[gnu::target("avx2")]] inline void retire_ended_avx2(detail::ActiveEdges& a, double bottom) {
   // For each mask of kept lanes, the 32-bit halves of the kept doubles, in order, first.
   static constexpr auto kPack = [] {
@@ -214,7 +214,8 @@ inline int piece_last_cell(double xa, double xb) { return static_cast<int>(std::
     const __m128i counted = _mm_and_si128(_mm256_castsi256_si128(_mm256_permutevar8x32_epi32(piece, to_low_lanes)),
                                           _mm_cmpgt_epi32(_mm_set1_epi32(static_cast<int>(a.size - k)), lanes));
     lo = _mm_min_epi32(lo, _mm_blendv_epi8(lo, p.first, counted));
-    hi = _mm_max_epi32(hi, _mm_blendv_epi8(hi, _mm_add_epi32(_mm_add_epi32(p.first, p.past), _mm_set1_epi32(1)), counted));
+    const __m128i last = _mm_add_epi32(_mm_add_epi32(p.first, p.past), _mm_set1_epi32(1));
+    hi = _mm_max_epi32(hi, _mm_blendv_epi8(hi, last, counted));
   }
   lo = _mm_min_epi32(lo, _mm_shuffle_epi32(lo, 0x4E));
   lo = _mm_min_epi32(lo, _mm_shuffle_epi32(lo, 0xB1));
@@ -439,6 +440,8 @@ constexpr int kTrimmedDenseColumns = 24;
 constexpr int dense_stride(int columns) { return (columns + 3) & ~3; }
 static_assert(kTrimmedDenseColumns <= 32, "a narrow block's row fits sweep_narrow_row's nonzero mask");
 
+// Edges of fewer rows, and vertical edges, keep the scalar walk: four lanes for them cost more than their branches'
+// mispredictions (text 5-8 % slower with them, docs/performance.md).
 constexpr int kWalkMinRows = 3;
 #ifdef VRASTER_HAVE_AVX2_KERNELS
 // The scalar walk below (sweep_dense_block) four rows a step: the x where edge e leaves each of rows y .. y + 3
@@ -446,9 +449,8 @@ constexpr int kWalkMinRows = 3;
 // split at once (split4) and added row by row, so every cell gets the numbers and the order of the scalar walk.
 // Rows from r1 on are left alone.
 template <bool kTrimmed>
-[[gnu::target("avx2")]] inline void walk_edge_avx2(const Edge& e, int r0, int r1, int y_min,
-                                                                      double shift, double* block, int stride,
-                                                                      int* extent) {
+[[gnu::target("avx2")]] inline void walk_edge_avx2(const Edge& e, int r0, int r1, int y_min, double shift,
+                                                   double* block, int stride, int* extent) {
   double ya = std::max(e.y0, static_cast<double>(r0));
   double xa = (ya == e.y0 ? e.x0 : e.x_at(ya)) - shift;
   const __m256d y0 = _mm256_set1_pd(e.y0), y1 = _mm256_set1_pd(e.y1), x0 = _mm256_set1_pd(e.x0);
@@ -700,7 +702,8 @@ void detail::sweep_dense_range(FillRule rule, const std::vector<Edge>& edges, in
       static_cast<int>(std::clamp<std::int64_t>(Rasterizer::kDefaultDenseLimit / stride, 1, y_to - y_from));
   // (plus kPieceSlack: a piece split without branches adds + 0 to up to 3 cells past the cell after its last, past
   // the block's last row too)
-  const std::size_t cells = static_cast<std::size_t>(stride) * static_cast<std::size_t>(strip_rows) + detail::kPieceSlack;
+  const std::size_t cells =
+      static_cast<std::size_t>(stride) * static_cast<std::size_t>(strip_rows) + detail::kPieceSlack;
   if (s.block.size() < cells) s.block.assign(cells, 0.0);  // zero; every sweep leaves it zero
   const auto extents = static_cast<std::size_t>(2 * strip_rows);
   if (s.extent.size() < extents) s.extent.resize(extents);
