@@ -281,6 +281,11 @@ template <bool kAvx2 = false>
 }
 
 #ifdef VRASTER_HAVE_AVX2_KERNELS
+// All ones in the (64-bit) lanes where v's (32-bit) lane is k.
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d lanes_where_equal(__m128i v, int k) {
+  return _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpeq_epi32(v, _mm_set1_epi32(k))));
+}
+
 // accumulate_piece for four pieces at once without branches (lane i: from x = xa[i] to xb[i], height h[i]): the
 // first cell, how many cells the right end lies past it, and, for pieces within three cells (nine in ten), the
 // numbers accumulate_split adds to cells first .. first + 3: the general split's numbers (accumulate_long_piece), or
@@ -290,11 +295,6 @@ template <bool kAvx2 = false>
 // values: minpd / maxpd with the operands below give std::min / std::max's, there is no FMA, and a piece that ends on
 // a cell's left side adds + 0 where the general split adds nothing (only the sign of a zero cell can differ, which no
 // sum sees).
-// All ones in the (64-bit) lanes where v's (32-bit) lane is k.
-[[gnu::target("avx2"), gnu::always_inline]] inline __m256d lanes_where_equal(__m128i v, int k) {
-  return _mm256_castsi256_pd(_mm256_cvtepi32_epi64(_mm_cmpeq_epi32(v, _mm_set1_epi32(k))));
-}
-
 struct Split4 {
   __m128i first, past;
   __m256d add0, add1, then1, add2, then2, add3;
@@ -327,9 +327,7 @@ struct Split4 {
   p.add3 = _mm256_and_pd(three_cells, last1);
   return p;
 }
-#endif
 
-#ifdef VRASTER_HAVE_AVX2_KERNELS
 // A split's four lanes in memory, with the pieces' ends and heights, to add the pieces one at a time.
 struct SplitLanes {
   alignas(32) double xa[4], xb[4], h[4], add0[4], add1[4], then1[4], add2[4], then2[4], add3[4];

@@ -36,10 +36,6 @@ struct ActiveEdges {
   std::vector<double> xb;  // the current row: where it leaves the row
   std::vector<double> h;   // the current row: the piece's height times the winding (0: no piece)
   std::vector<std::uint64_t> ranges;  // a wide row's pieces: first cell << 32 | last cell (not a column: scratch)
-  // The current row's pieces split into cells (sweep.cpp, split_pieces_avx2): the first cell, how many cells the
-  // piece's right end lies past it, and what the first four cells get (cells.hpp, accumulate_split).
-  std::vector<std::int32_t> first_cell, cells_past;
-  std::vector<double> add0, add1, then1, add2, then2, add3;
   std::size_t size = 0;
 
   void clear() { size = 0; }
@@ -47,13 +43,8 @@ struct ActiveEdges {
   void reserve(std::size_t n) {
     if (x.size() >= n + kPadding) return;
     const std::size_t room = std::max<std::size_t>(2 * x.size(), n + kPadding);
-    for (std::vector<double>* c : {&x0, &y0, &dxdy, &y1, &x1, &winding, &x, &xb, &h, &add0, &add1, &then1, &add2,
-                                   &then2, &add3}) {
-      c->resize(room);
-    }
+    for (std::vector<double>* c : {&x0, &y0, &dxdy, &y1, &x1, &winding, &x, &xb, &h}) c->resize(room);
     ranges.resize(room);
-    first_cell.resize(room);
-    cells_past.resize(room);
   }
   /// Appends edge e entering the current row at x_enter (call reserve first).
   void push(const Edge& e, double x_enter) {

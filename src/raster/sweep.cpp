@@ -191,38 +191,20 @@ inline int piece_last_cell(double xa, double xb) { return static_cast<int>(std::
   a.size = kept;
 }
 
-// accumulate_piece's split of every active edge's piece in the row, four edges a step (detail::split4), into
-// the columns first_cell, cells_past and add0 .. add3. Also the row's first and last touched cells, pieces of height
-// 0 left out. Lanes past the list compute into the padding and count for nothing.
-[[gnu::target("avx2")]] inline void split_pieces_avx2(detail::ActiveEdges& a, int& x_lo, int& x_hi) {
-  const __m256i to_low_lanes = _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0);
-  const __m128i lanes = _mm_setr_epi32(0, 1, 2, 3);
-  __m128i lo = _mm_set1_epi32(std::numeric_limits<int>::max()), hi = _mm_set1_epi32(std::numeric_limits<int>::min());
+// The row's pieces, four active edges a step: split without branches (detail::SplitLanes), then added in the list's
+// order, so each cell gets accumulate_piece's numbers in the scalar loop's order. Also the row's first and last
+// touched cells (piece_first_cell, piece_last_cell); pieces of height 0 are left out, as there.
+[[gnu::target("avx2")]] inline void add_pieces_avx2(const detail::ActiveEdges& a, double* acc, int& x_lo, int& x_hi) {
   for (std::size_t k = 0; k < a.size; k += 4) {
-    const __m256d h = _mm256_loadu_pd(&a.h[k]);
-    const detail::Split4 p = detail::split4(_mm256_loadu_pd(&a.x[k]), _mm256_loadu_pd(&a.xb[k]), h);
-    _mm256_storeu_pd(&a.add0[k], p.add0);
-    _mm256_storeu_pd(&a.add1[k], p.add1);
-    _mm256_storeu_pd(&a.then1[k], p.then1);
-    _mm256_storeu_pd(&a.add2[k], p.add2);
-    _mm256_storeu_pd(&a.then2[k], p.then2);
-    _mm256_storeu_pd(&a.add3[k], p.add3);
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(&a.first_cell[k]), p.first);
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(&a.cells_past[k]), p.past);
-    // The touched cells: from the first cell to the one after the right end's (piece_first_cell, piece_last_cell).
-    const __m256i piece = _mm256_castpd_si256(_mm256_cmp_pd(h, _mm256_setzero_pd(), _CMP_NEQ_UQ));  // h == 0: none
-    const __m128i counted = _mm_and_si128(_mm256_castsi256_si128(_mm256_permutevar8x32_epi32(piece, to_low_lanes)),
-                                          _mm_cmpgt_epi32(_mm_set1_epi32(static_cast<int>(a.size - k)), lanes));
-    lo = _mm_min_epi32(lo, _mm_blendv_epi8(lo, p.first, counted));
-    const __m128i last = _mm_add_epi32(_mm_add_epi32(p.first, p.past), _mm_set1_epi32(1));
-    hi = _mm_max_epi32(hi, _mm_blendv_epi8(hi, last, counted));
+    const detail::SplitLanes split(_mm256_loadu_pd(&a.x[k]), _mm256_loadu_pd(&a.xb[k]), _mm256_loadu_pd(&a.h[k]));
+    const int lanes = static_cast<int>(std::min<std::size_t>(4, a.size - k));  // the last step may pass the list
+    for (int i = 0; i < lanes; ++i) {
+      if (split.h[i] == 0) continue;
+      split.add(i, acc);
+      x_lo = std::min(x_lo, split.first[i]);
+      x_hi = std::max(x_hi, split.first[i] + split.past[i] + 1);
+    }
   }
-  lo = _mm_min_epi32(lo, _mm_shuffle_epi32(lo, 0x4E));
-  lo = _mm_min_epi32(lo, _mm_shuffle_epi32(lo, 0xB1));
-  hi = _mm_max_epi32(hi, _mm_shuffle_epi32(hi, 0x4E));
-  hi = _mm_max_epi32(hi, _mm_shuffle_epi32(hi, 0xB1));
-  x_lo = std::min(x_lo, _mm_cvtsi128_si32(lo));
-  x_hi = std::max(x_hi, _mm_cvtsi128_si32(hi));
 }
 #endif
 
@@ -322,19 +304,9 @@ template <FillRule R, bool kAvx2>
     const double* const hs = a.h.data();
 #ifdef VRASTER_HAVE_AVX2_KERNELS
     if constexpr (kAvx2) {
-      // The pieces split four at a time, then added one by one: no branch on how many cells a piece touches (a
-      // branch mispredicted for short edges and, less often, for long ones; stars 6-8 % faster than with it).
-      split_pieces_avx2(a, x_lo, x_hi);
-      for (std::size_t k = 0; k < n; ++k) {
-        if (hs[k] == 0) continue;
-        const int i0 = a.first_cell[k], past = a.cells_past[k];
-        if (past > 2) {
-          detail::accumulate_long_piece<kAvx2>(acc, std::min(xs[k], xbs[k]), std::max(xs[k], xbs[k]), hs[k], i0,
-                                               i0 + past);
-        } else {
-          detail::accumulate_split(acc, i0, a.add0[k], a.add1[k], a.then1[k], a.add2[k], a.then2[k], a.add3[k]);
-        }
-      }
+      // No branch on how many cells a piece touches (mispredicted for short edges and, less often, for long ones;
+      // stars 6-8 % faster without it).
+      add_pieces_avx2(a, acc, x_lo, x_hi);
     } else
 #endif
     {
