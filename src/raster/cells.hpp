@@ -197,7 +197,7 @@ template <FillRule R, bool kAvx2>
 //
 // The split without branches (split4 and accumulate_split, below) writes cells i .. i + 3 for a piece that starts
 // in cell i (the cells past the piece get + 0): its rows need kPieceSlack cells past the last cell a piece can start
-// in. Either way the same numbers are added to each cell in the same order.
+// in. With or without that split, the same numbers are added to each cell in the same order.
 constexpr int kPieceSlack = 3;
 
 #ifdef VRASTER_HAVE_AVX2_KERNELS
