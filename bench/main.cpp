@@ -2,8 +2,11 @@
 // built with -DVRASTER_BENCH_BLEND2D_ROOT) Blend2D in the same run, one thread each, plus vraster with --threads N
 // threads (default 2), and prints ms per frame as a Markdown table: the best of rounds (default) or the median.
 //
-//   vraster_bench [SCENE_DIR] [--frames N] [--time SECONDS] [--scene NAME]... [--threads N] [--check] [--no-timing]
-//                 [--out DIR]
+//   vraster_bench [SCENE_DIR | --generated] [--frames N] [--time SECONDS] [--scene NAME]... [--threads N] [--check]
+//                 [--no-timing] [--out DIR]
+//
+// --generated renders the scenes of generated_scenes.cpp instead of a folder's: shapes the shared scenes lack, to
+// check a speed-up beyond the scenes it was tuned on.
 //
 // A frame is: clear to white + fill every path in file order (source-over, antialiased) + flush. Parsing and
 // path building happen before timing. Each engine renders 1 warm-up frame, then frames in batches of ~0.1 s,
@@ -29,6 +32,7 @@
 #include <vector>
 
 #include "engines.hpp"
+#include "generated_scenes.hpp"
 #include "svg_subset/svg.hpp"
 #include "vraster/png.hpp"
 
@@ -47,12 +51,15 @@ struct Options {
   bool timing = true;
   bool best_of_rounds = true;  // --stat best (default) or median
   std::string out_dir;
+  bool generated = false;  // the built-in scenes (generated_scenes.cpp) instead of scene_dir's
 };
 
 [[noreturn]] void usage(int status) {
   std::fprintf(status ? stderr : stdout,
                "usage: vraster_bench [SCENE_DIR] [options]\n"
                "  SCENE_DIR        folder of *.svg scenes (default: <repo>/../shared/bench/scenes)\n"
+               "  --generated      the built-in generated scenes instead of a folder's (discs, rings, ellipses,\n"
+               "                   rectangles, turned rectangles, opaque triangles, thin lines)\n"
                "  --frames N       timed frames per engine and scene (default: >= 5 frames and --time)\n"
                "  --time SECONDS   minimum timed seconds per engine and scene (default 0.5)\n"
                "  --scene NAME     only this scene (file name without .svg); repeatable, or comma-separated\n"
@@ -115,6 +122,8 @@ Options parse_args(int argc, char** argv) {
         usage(2);
       }
       o.best_of_rounds = v == "best";
+    } else if (a == "--generated") {
+      o.generated = true;
     } else if (a == "--no-timing") {
       o.timing = false;
     } else if (a == "--out") {
@@ -129,6 +138,10 @@ Options parse_args(int argc, char** argv) {
       std::fprintf(stderr, "vraster_bench: more than one scene folder given\n");
       usage(2);
     }
+  }
+  if (o.generated && dir_given) {
+    std::fprintf(stderr, "vraster_bench: give a scene folder or --generated, not both\n");
+    usage(2);
   }
   return o;
 }
@@ -269,30 +282,45 @@ struct Result {
 int main(int argc, char** argv) {
   const Options opt = parse_args(argc, argv);
 
-  std::vector<std::pair<std::string, fs::path>> scenes;
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(opt.scene_dir, ec)) {
-    if (entry.path().extension() != ".svg") continue;
-    const std::string name = entry.path().stem().string();
-    if (!opt.scenes.empty() && std::find(opt.scenes.begin(), opt.scenes.end(), name) == opt.scenes.end()) continue;
-    scenes.emplace_back(name, entry.path());
+  // A scene: SVG text (generated) or a file.
+  struct Scene {
+    std::string name;
+    fs::path file;
+    std::string svg;
+  };
+  std::vector<Scene> scenes;
+  const std::string source = opt.generated ? std::string("the generated scenes") : opt.scene_dir;
+  auto wanted = [&](const std::string& name) {
+    return opt.scenes.empty() || std::find(opt.scenes.begin(), opt.scenes.end(), name) != opt.scenes.end();
+  };
+  if (opt.generated) {
+    for (bench::GeneratedScene& g : bench::generated_scenes()) {
+      if (wanted(g.name)) scenes.push_back({g.name, {}, std::move(g.svg)});
+    }
+  } else {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(opt.scene_dir, ec)) {
+      if (entry.path().extension() != ".svg") continue;
+      const std::string name = entry.path().stem().string();
+      if (wanted(name)) scenes.push_back({name, entry.path(), {}});
+    }
+    if (ec) {
+      std::fprintf(stderr, "vraster_bench: cannot read scene folder %s: %s\n", opt.scene_dir.c_str(),
+                   ec.message().c_str());
+      return 1;
+    }
   }
-  if (ec) {
-    std::fprintf(stderr, "vraster_bench: cannot read scene folder %s: %s\n", opt.scene_dir.c_str(),
-                 ec.message().c_str());
-    return 1;
-  }
-  for (const std::string& wanted : opt.scenes) {
-    if (std::none_of(scenes.begin(), scenes.end(), [&](const auto& s) { return s.first == wanted; })) {
-      std::fprintf(stderr, "vraster_bench: no scene %s.svg in %s\n", wanted.c_str(), opt.scene_dir.c_str());
+  for (const std::string& name : opt.scenes) {
+    if (std::none_of(scenes.begin(), scenes.end(), [&](const Scene& s) { return s.name == name; })) {
+      std::fprintf(stderr, "vraster_bench: no scene %s in %s\n", name.c_str(), source.c_str());
       return 1;
     }
   }
   if (scenes.empty()) {
-    std::fprintf(stderr, "vraster_bench: no *.svg scenes in %s\n", opt.scene_dir.c_str());
+    std::fprintf(stderr, "vraster_bench: no *.svg scenes in %s\n", source.c_str());
     return 1;
   }
-  std::sort(scenes.begin(), scenes.end(), [](const auto& a, const auto& b) { return natural_less(a.first, b.first); });
+  std::sort(scenes.begin(), scenes.end(), [](const Scene& a, const Scene& b) { return natural_less(a.name, b.name); });
   if (!opt.out_dir.empty()) fs::create_directories(opt.out_dir);
 
   std::vector<std::unique_ptr<Engine>> engines;
@@ -315,10 +343,11 @@ int main(int argc, char** argv) {
 
   std::vector<Result> results;
   bool load_failed = false;
-  for (const auto& [name, file] : scenes) {
+  for (const Scene& scene : scenes) {
+    const std::string& name = scene.name;
     vraster::svg::Document doc;
     try {
-      doc = vraster::svg::load_svg(file.string());
+      doc = scene.svg.empty() ? vraster::svg::load_svg(scene.file.string()) : vraster::svg::parse_svg(scene.svg, name);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "vraster_bench: %s: cannot load: %s\n", name.c_str(), e.what());
       load_failed = true;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the benchmark in Release and runs it on the shared scenes: vraster against Cairo and FreeType's smooth
 # rasterizer, single-threaded, in the same run. The Markdown table goes to stdout; build output and progress go
-# to stderr. Extra arguments go to vraster_bench (e.g. --scene poly10_64 --check --out /tmp/frames).
+# to stderr. Extra arguments go to vraster_bench (e.g. --scene poly10_64 --check --out /tmp/frames; --generated
+# renders the benchmark's own generated scenes instead of the shared ones).
 #
 # Needs what scripts/setup.sh installs (a C++20 compiler, CMake, pkg-config, libpng, pugixml, libcairo2-dev,
 # libfreetype-dev); installs nothing itself.
@@ -23,7 +24,9 @@ done
 for module in cairo freetype2; do
   pkg-config --exists "$module" || { echo "bench.sh: pkg-config cannot find $module (run scripts/setup.sh)" >&2; exit 1; }
 done
-[ -d "$scenes" ] || { echo "bench.sh: no scene folder at $scenes" >&2; exit 1; }
+generated=false
+for arg in "$@"; do [ "$arg" = --generated ] && generated=true; done
+$generated || [ -d "$scenes" ] || { echo "bench.sh: no scene folder at $scenes" >&2; exit 1; }
 
 # shellcheck disable=SC2086  # VRASTER_BENCH_CMAKE_ARGS is a list of words
 cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DVRASTER_BUILD_BENCH=ON -DVRASTER_BUILD_TESTS=OFF \
@@ -31,4 +34,7 @@ cmake -S "$repo" -B "$build" -DCMAKE_BUILD_TYPE=Release -DVRASTER_BUILD_BENCH=ON
   ${VRASTER_BENCH_CMAKE_ARGS:-} >&2
 cmake --build "$build" -j2 --target vraster_bench >&2
 
+if $generated; then
+  exec "$build/bench/vraster_bench" "$@"
+fi
 exec "$build/bench/vraster_bench" "$scenes" "$@"
