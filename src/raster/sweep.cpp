@@ -193,18 +193,28 @@ inline int piece_last_cell(double xa, double xb) { return static_cast<int>(std::
 
 // The row's pieces, four active edges a step: split without branches (detail::SplitLanes), then added in the list's
 // order, so each cell gets accumulate_piece's numbers in the scalar loop's order. Also the row's first and last
-// touched cells (piece_first_cell, piece_last_cell); pieces of height 0 are left out, as there.
-[[gnu::target("avx2")]] inline void add_pieces_avx2(const detail::ActiveEdges& a, double* acc, int& x_lo, int& x_hi) {
+// touched cells (piece_first_cell, piece_last_cell); pieces of height 0 are left out, as there. kRanges: also each
+// piece's range of cells for resolve_clusters (first << 32 | last, from the split's numbers: piece_first_cell's and
+// piece_last_cell's), a store a piece instead of a second pass over the pieces if the row turns out sparse; for rows
+// of few edges, which are the sparse ones (crowded rows are swept whole and would only pay the stores). Returns the
+// number of ranges.
+template <bool kRanges>
+[[gnu::target("avx2")]] inline std::size_t add_pieces_avx2(const detail::ActiveEdges& a, double* acc, int& x_lo,
+                                                          int& x_hi, std::uint64_t* ranges) {
+  std::size_t count = 0;
   for (std::size_t k = 0; k < a.size; k += 4) {
     const detail::SplitLanes split(_mm256_loadu_pd(&a.x[k]), _mm256_loadu_pd(&a.xb[k]), _mm256_loadu_pd(&a.h[k]));
     const int lanes = static_cast<int>(std::min<std::size_t>(4, a.size - k));  // the last step may pass the list
     for (int i = 0; i < lanes; ++i) {
       if (split.h[i] == 0) continue;
       split.add(i, acc);
-      x_lo = std::min(x_lo, split.first[i]);
-      x_hi = std::max(x_hi, split.first[i] + split.past[i] + 1);
+      const int first = split.first[i], last = split.first[i] + split.past[i] + 1;
+      x_lo = std::min(x_lo, first);
+      x_hi = std::max(x_hi, last);
+      if constexpr (kRanges) ranges[count++] = static_cast<std::uint64_t>(first) << 32 | static_cast<std::uint32_t>(last);
     }
   }
+  return count;
 }
 #endif
 
@@ -255,6 +265,9 @@ template <FillRule R, bool kAvx2>
   }
 }
 
+// Rows of up to this many active edges note their pieces' ranges as they add them (add_pieces_avx2).
+constexpr std::size_t kRangedRowEdges = 8;
+
 template <FillRule R, bool kAvx2>
 [[gnu::always_inline]] inline void sweep_analytic_rows(const detail::EdgeTableView& table, const RowBuffers& b,
                                                        int y_from, int y_to, int width, CoverageSink& sink) {
@@ -302,11 +315,18 @@ template <FillRule R, bool kAvx2>
     const double* const xs = a.x.data();
     const double* const xbs = a.xb.data();
     const double* const hs = a.h.data();
+    std::size_t clusters = 0;  // pieces of a sparse wide row, for resolve_clusters
+    bool ranged = false;       // whether the pieces' ranges were noted as they were added
 #ifdef VRASTER_HAVE_AVX2_KERNELS
     if constexpr (kAvx2) {
       // No branch on how many cells a piece touches (mispredicted for short edges and, less often, for long ones;
       // stars 6-8 % faster without it).
-      add_pieces_avx2(a, acc, x_lo, x_hi);
+      if (n <= kRangedRowEdges) {
+        clusters = add_pieces_avx2<true>(a, acc, x_lo, x_hi, a.ranges.data());
+        ranged = true;
+      } else {
+        add_pieces_avx2<false>(a, acc, x_lo, x_hi, nullptr);
+      }
     } else
 #endif
     {
@@ -324,11 +344,10 @@ template <FillRule R, bool kAvx2>
     // only, so a band or a queued fill decides every row as a whole sweep does.
     const bool narrow = x_hi - x_lo < detail::kNarrowRowCells;
     const bool whole = static_cast<std::size_t>(x_hi - x_lo) <= kWholeRunCellsPerEdge * n;
-    std::size_t clusters = 0;  // pieces of a sparse wide row, for resolve_clusters
     if (x_lo <= x_hi && !narrow) {
       if (whole) {
         mark_cells(bits, x_lo, x_hi);
-      } else {
+      } else if (!ranged) {
         std::uint64_t* const ranges = a.ranges.data();
         for (std::size_t k = 0; k < n; ++k) {
           if (hs[k] == 0) continue;
