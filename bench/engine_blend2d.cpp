@@ -40,6 +40,7 @@ class Blend2DEngine final : public Engine {
     info.thread_count = 0;  // synchronous, single-threaded
     info.flags = 0;         // no BL_CONTEXT_CREATE_FLAG_DISABLE_JIT: the JIT pipelines, Blend2D's default
     if (ctx_.begin(image_, info) != BL_SUCCESS) throw std::runtime_error("BLContext::begin failed");
+    ctx_.set_flatten_tolerance(tolerance_);  // (its own default is 0.2 px)
     for (const vraster::svg::DrawItem& item : doc.items) {
       if (!item.is_fill()) continue;  // the fill benchmark compares fills only
       Item it;

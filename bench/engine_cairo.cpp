@@ -32,6 +32,7 @@ class CairoEngine final : public Engine {
     surface_ = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width_, height_);
     cr_ = cairo_create(surface_);
     if (cairo_status(cr_) != CAIRO_STATUS_SUCCESS) throw std::runtime_error("cairo_create failed");
+    cairo_set_tolerance(cr_, tolerance_);
     for (const vraster::svg::DrawItem& item : doc.items) {
       if (!item.is_fill()) continue;  // the fill benchmark compares fills only
       cairo_new_path(cr_);

@@ -23,11 +23,10 @@ class VrasterEngine final : public Engine {
 
   bool frame() override {
     image_.clear(vraster::Color{1, 1, 1, 1});
-    const vraster::svg::RenderSettings settings;  // what svg::render uses by default
+    const vraster::svg::RenderSettings settings;  // what svg::render uses by default (but the bench's tolerance)
     for (const vraster::svg::DrawItem& item : doc_->items) {
       if (!item.is_fill()) continue;  // the fill benchmark compares fills only
-      const vraster::FillOptions options{settings.rule_override.value_or(item.rule), settings.aa,
-                                         settings.tolerance};
+      const vraster::FillOptions options{settings.rule_override.value_or(item.rule), settings.aa, tolerance_};
       renderer_.fill(image_, item.path, item.transform, item.color, options);
     }
     renderer_.flush();  // with threads the fills were queued: the frame is drawn here

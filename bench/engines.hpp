@@ -7,6 +7,7 @@
 #include <string>
 
 #include "svg_subset/svg.hpp"
+#include "vraster/flatten.hpp"
 #include "vraster/image.hpp"
 
 namespace bench {
@@ -24,6 +25,12 @@ class Engine {
   virtual std::string error() const { return {}; }
   /// Library version for the report.
   virtual std::string version() const = 0;
+  /// The largest distance between a curve and the lines it is drawn with, in device pixels, for the engines that
+  /// take one (vraster, Cairo, Blend2D); set before prepare(). FreeType splits curves by its own fixed rule.
+  virtual void set_tolerance(double tolerance) { tolerance_ = tolerance; }
+
+ protected:
+  double tolerance_ = vraster::kDefaultTolerance;
 };
 
 /// vraster with `threads` threads (Renderer::set_threads; a frame's fills are queued and flushed at its end); 1 is

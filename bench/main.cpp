@@ -52,6 +52,7 @@ struct Options {
   bool best_of_rounds = true;  // --stat best (default) or median
   std::string out_dir;
   bool generated = false;  // the built-in scenes (generated_scenes.cpp) instead of scene_dir's
+  double tolerance = vraster::kDefaultTolerance;  // curve flattening, for every engine that takes one
 };
 
 [[noreturn]] void usage(int status) {
@@ -64,6 +65,8 @@ struct Options {
                "  --time SECONDS   minimum timed seconds per engine and scene (default 0.5)\n"
                "  --scene NAME     only this scene (file name without .svg); repeatable, or comma-separated\n"
                "  --threads N      add vraster with N threads (default 2; 1: no such column)\n"
+               "  --tolerance PX   curves flattened to within PX device pixels by vraster, Cairo and Blend2D alike\n"
+               "                   (default 0.1, vraster's and Cairo's default; Blend2D's own is 0.2)\n"
                "  --check          compare vraster's image with the other engines' per scene (and the threaded\n"
                "                   vraster's with vraster's: it must be identical)\n"
                "  --stat best|median  best of rounds (default: the lowest of the per-batch medians) or the median\n"
@@ -111,6 +114,12 @@ Options parse_args(int argc, char** argv) {
       o.threads = std::atoi(value().c_str());
       if (o.threads < 1 || o.threads > 64) {
         std::fprintf(stderr, "vraster_bench: --threads needs a number from 1 to 64\n");
+        usage(2);
+      }
+    } else if (a == "--tolerance") {
+      o.tolerance = std::atof(value().c_str());
+      if (!(o.tolerance > 0) || !std::isfinite(o.tolerance)) {
+        std::fprintf(stderr, "vraster_bench: --tolerance needs a positive number of pixels\n");
         usage(2);
       }
     } else if (a == "--check") {
@@ -339,6 +348,7 @@ int main(int argc, char** argv) {
     engines.push_back(bench::make_vraster_engine(opt.threads));
   }
   const bool have_threaded = kThreaded != kNone;
+  for (const auto& engine : engines) engine->set_tolerance(opt.tolerance);
   const std::size_t E = engines.size();
 
   std::vector<Result> results;
@@ -494,13 +504,14 @@ int main(int argc, char** argv) {
                             : std::string("median ms per frame")) +
             (opt.frames > 0 ? " of " + std::to_string(opt.frames) + " frames after 1 warm-up"
                             : " after 1 warm-up, at least 5 frames and " + fmt_ms(opt.seconds) + " s per engine and scene");
-  std::printf("%s; %s%s%s; %s; %u hardware threads, 1 used per engine%s; %s.\n\n", engines[kCairo]->version().c_str(),
+  std::printf("%s; %s%s%s; %s; %u hardware threads, 1 used per engine%s; curves flattened to %s px (vraster, Cairo%s); %s.\n\n",
+              engines[kCairo]->version().c_str(),
               engines[kFreeType]->version().c_str(), kHaveBlend2D ? "; " : "",
               kHaveBlend2D ? engines[kBlend2D]->version().c_str() : "", cpu_model().c_str(),
               std::thread::hardware_concurrency(),
               have_threaded ? (" (" + std::to_string(opt.threads) + " for " + engines[kThreaded]->name() + ")").c_str()
                             : "",
-              method.c_str());
+              fmt_ms(opt.tolerance).c_str(), kHaveBlend2D ? ", Blend2D" : "", method.c_str());
 
   if (opt.timing) {
     // One table: every engine's ms, then vraster's ratio to each (one thread each), then the threaded speed-up.
