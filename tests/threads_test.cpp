@@ -581,11 +581,12 @@ TEST(Threads, AFrameOfManyMediumFillsStartsAQueue) {
 // gives the pixels of one thread.
 TEST(Threads, QueueRunsOnSetThreadsDestructionAndMemoryBudget) {
   const FillOptions options;
-  // A zigzag of 60,000 edges: 16 MiB of edge tables are reached within six such fills.
+  // A zigzag of 8,000 edges, about half a MiB queued (its points and edges): the queue's budget of 2 MiB is
+  // reached within five such fills.
   Path zigzag;
   zigzag.move_to({0, 0});
-  for (int i = 0; i < 30000; ++i) {
-    zigzag.line_to({kSide * (i % 2 ? 0.1 : 0.9), kSide * (i + 0.5) / 30000.0});
+  for (int i = 0; i < 8000; ++i) {
+    zigzag.line_to({kSide * (i % 2 ? 0.1 : 0.9), kSide * (i + 0.5) / 8000.0});
   }
   zigzag.line_to({0, kSide});
   zigzag.close();

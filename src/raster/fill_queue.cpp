@@ -45,8 +45,13 @@ constexpr double kWorkDrawnBeforeQueue = 3200;
 constexpr double kMinWorkToStartQueue = 100;
 // Recorded fills: composited pixels per unit of work, as band_work counts the area inside.
 constexpr double kRecordedPixelsPerUnit = 16;
-// Memory the queue may hold (outlines, edge tables and recordings) before fill_queued runs it.
-constexpr std::size_t kQueueBudgetBytes = std::size_t{16} << 20;
+// Memory the queue may hold (outlines, edge tables and recordings) before fill_queued runs it. What a fill queues
+// is written when the queue is built and read back when its bands run: past the cache, that is a trip to memory
+// each way. At 16 MiB, cubic_256 (some 20 MB of edges a frame) took 11-18 % longer queued than drawn fill by fill
+// on one thread, and gave 1.66-1.79x on 2 threads; at 2 MiB (about the two cores' L2) 1.80-1.88x, the other scenes
+// level. At 1 MiB a frame of small fills (cubic_16) ran the queue three times and lost 15 % to waking the threads
+// (docs/performance.md, twenty-third session).
+constexpr std::size_t kQueueBudgetBytes = std::size_t{2} << 20;
 // Building the queue's fills: chunks of consecutive fills per thread, several so that the threads finish together.
 constexpr int kBuildChunksPerThread = 8;
 
@@ -182,7 +187,7 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
   ++queued_;
   queued_bytes_ += q.bytes();
   queued_work_ += q.work;
-  if (queued_bytes_ > kQueueBudgetBytes) flush();
+  if (queued_bytes_ > kQueueBudgetBytes) run_queue();  // not the frame's end: drawn_at_once_ goes on
 }
 
 void RasterizerImpl::build_queued(QueuedFill& q, BandScratch& s) const {
@@ -247,6 +252,10 @@ void RasterizerImpl::run_queued_band(int band, BandScratch& s) {
 
 void RasterizerImpl::flush() {
   drawn_at_once_ = 0;  // a flush ends a frame, or a stretch of drawing the queue cannot hold
+  run_queue();
+}
+
+void RasterizerImpl::run_queue() {
   if (queued_ == 0) return;
   // First the edges of the fills that wait unbuilt: chunks of consecutive fills on the pool's threads.
   auto build = [&](std::size_t from, std::size_t to, BandScratch& s) {

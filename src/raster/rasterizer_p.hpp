@@ -218,6 +218,8 @@ class RasterizerImpl {
                    std::unique_ptr<CoverageSink> owned);
   void flush();
   std::size_t queued_fills() const { return queued_; }
+  /// Draws the queue (flush() without ending the frame: the count of small fills drawn at once goes on).
+  void run_queue();
   int last_flush_bands_ = 0;
 
  private:
