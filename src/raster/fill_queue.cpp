@@ -47,10 +47,10 @@ constexpr double kMinWorkToStartQueue = 100;
 constexpr double kRecordedPixelsPerUnit = 16;
 // Memory the queue may hold (outlines, edge tables and recordings) before fill_queued runs it. What a fill queues
 // is written when the queue is built and read back when its bands run: past the cache, that is a trip to memory
-// each way. At 16 MiB, cubic_256 (some 20 MB of edges a frame) took 11-18 % longer queued than drawn fill by fill
-// on one thread, and gave 1.66-1.79x on 2 threads; at 2 MiB (about the two cores' L2) 1.80-1.88x, the other scenes
-// level. At 1 MiB a frame of small fills (cubic_16) ran the queue three times and lost 15 % to waking the threads
-// (docs/performance.md, twenty-third session).
+// each way. At 16 MiB, cubic_256 (11 MiB of outlines and edges a frame) took 11-18 % longer queued than drawn fill
+// by fill on one thread, and gave 1.66-1.79x on 2 threads; at 2 MiB (about the two cores' L2) 1.80-1.88x, the
+// other scenes level. At 1 MiB a frame of small fills (cubic_16) ran the queue three times and lost 15 % to waking
+// the threads (docs/performance.md, twenty-third session).
 constexpr std::size_t kQueueBudgetBytes = std::size_t{2} << 20;
 // Building the queue's fills: chunks of consecutive fills per thread, several so that the threads finish together.
 constexpr int kBuildChunksPerThread = 8;
