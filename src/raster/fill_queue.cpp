@@ -67,24 +67,45 @@ double outline_work(const Polylines& lines) {
 }  // namespace
 
 void CoverageRecording::span(int y, int x0, int x1, float coverage) {
-  calls_.push_back({y, x0, x1, coverage, kSpan});
+  calls_.push_back({y, y + 1, x0, x1, coverage, kSpan});
   pixels_ += static_cast<std::size_t>(x1 - x0);
+  ++replayed_calls_;
 }
 
 void CoverageRecording::row(int y, int x0, int x1, const float* coverage) {
-  calls_.push_back({y, x0, x1, 0.0f, static_cast<std::uint32_t>(values_.size())});
+  calls_.push_back({y, y + 1, x0, x1, 0.0f, static_cast<std::uint32_t>(values_.size())});
   values_.insert(values_.end(), coverage, coverage + (x1 - x0));
   pixels_ += static_cast<std::size_t>(x1 - x0);
+  ++replayed_calls_;
+}
+
+void CoverageRecording::repeat_row(int y, int y_end) {
+  for (auto call = calls_.rbegin(); call != calls_.rend() && call->y == y; ++call) {
+    const auto more = static_cast<std::size_t>(y_end - call->y_end);
+    call->y_end = y_end;
+    pixels_ += more * static_cast<std::size_t>(call->x1 - call->x0);
+    replayed_calls_ += more;
+  }
 }
 
 void CoverageRecording::replay(int y_from, int y_to, CoverageSink& sink) const {
-  auto call = std::lower_bound(calls_.begin(), calls_.end(), y_from, [](const Call& c, int y) { return c.y < y; });
-  for (; call != calls_.end() && call->y < y_to; ++call) {
-    if (call->first == kSpan) {
-      sink.span(call->y, call->x0, call->x1, call->coverage);
-    } else {
-      sink.row(call->y, call->x0, call->x1, values_.data() + call->first);
+  // The calls are in row order and their row ranges follow each other, so the first call that reaches y_from is
+  // found by its range's end.
+  auto call = std::upper_bound(calls_.begin(), calls_.end(), y_from, [](int y, const Call& c) { return y < c.y_end; });
+  while (call != calls_.end() && call->y < y_to) {
+    auto row_end = call;  // the calls of one row (or of one run of rows alike)
+    while (row_end != calls_.end() && row_end->y == call->y) ++row_end;
+    const int to = std::min(call->y_end, y_to);
+    for (int y = std::max(call->y, y_from); y < to; ++y) {
+      for (auto c = call; c != row_end; ++c) {
+        if (c->first == kSpan) {
+          sink.span(y, c->x0, c->x1, c->coverage);
+        } else {
+          sink.row(y, c->x0, c->x1, values_.data() + c->first);
+        }
+      }
     }
+    call = row_end;
   }
 }
 
@@ -92,6 +113,7 @@ void CoverageRecording::clear() {
   calls_.clear();
   values_.clear();
   pixels_ = 0;
+  replayed_calls_ = 0;
 }
 
 std::size_t CoverageRecording::bytes() const { return calls_.size() * sizeof(Call) + values_.size() * sizeof(float); }

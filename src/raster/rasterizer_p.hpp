@@ -143,19 +143,24 @@ class CoverageRecording final : public CoverageSink {
   void span(int y, int x0, int x1, float coverage) override;
   void row(int y, int x0, int x1, const float* coverage) override;
   bool takes_concurrent_rows() const override { return false; }  // recorded from one thread, in order
-  /// Hands the calls of rows [y_from, y_to) to `sink`, in the order they came.
+  /// The calls recorded for row y (the last row so far) stand for rows [y, y_end) alike: a rectangle's inside rows
+  /// are recorded once. Nothing happens when the last calls are not row y's (row y had none).
+  void repeat_row(int y, int y_end);
+  /// Hands the calls of rows [y_from, y_to) to `sink`, in the order they came (a repeated row's calls once for each
+  /// of its rows).
   void replay(int y_from, int y_to, CoverageSink& sink) const;
   void clear();
   bool empty() const { return calls_.empty(); }
-  std::size_t calls() const { return calls_.size(); }
+  std::size_t calls() const { return replayed_calls_; }  // calls a replay of every row makes
   std::size_t pixels() const { return pixels_; }  // pixels the calls cover
   std::size_t bytes() const;
   int y_min() const { return calls_.empty() ? 0 : calls_.front().y; }
-  int y_max() const { return calls_.empty() ? 0 : calls_.back().y + 1; }
+  int y_max() const { return calls_.empty() ? 0 : calls_.back().y_end; }
 
  private:
   struct Call {
-    int y, x0, x1;
+    int y, y_end;         // for rows [y, y_end): y + 1 unless repeat_row made it more
+    int x0, x1;
     float coverage;       // a span's coverage
     std::uint32_t first;  // a row's coverage: values_[first .. first + x1 - x0); kSpan for a span
   };
@@ -163,6 +168,7 @@ class CoverageRecording final : public CoverageSink {
   std::vector<Call> calls_;
   std::vector<float> values_;
   std::size_t pixels_ = 0;
+  std::size_t replayed_calls_ = 0;
 };
 
 /// One fill of a rasterizer's queue (Rasterizer::fill_queued): everything its rows need, owned, so that the
@@ -228,6 +234,11 @@ class RasterizerImpl {
   bool exact_within_budget(int height);
   /// One axis-aligned rectangle: its coverage without a sweep (rect.cpp). False when `lines` is not one.
   bool fill_rect(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
+  /// fill_rect into a recording, the inside rows recorded once (CoverageRecording::repeat_row).
+  bool fill_rect(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
+                 CoverageRecording& recording);
+  bool fill_rect_into(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink,
+                      CoverageRecording* recording);
   void build_edges(const Polylines& lines, int width, int height) {
     detail::build_edges(lines, width, height, edges_, y_min_, y_max_);
   }

@@ -96,6 +96,17 @@ struct RowPlan {
 
 bool detail::RasterizerImpl::fill_rect(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
                                        CoverageSink& sink) {
+  return fill_rect_into(lines, rule, aa, width, height, sink, nullptr);
+}
+
+bool detail::RasterizerImpl::fill_rect(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
+                                       CoverageRecording& recording) {
+  return fill_rect_into(lines, rule, aa, width, height, recording, &recording);
+}
+
+// recording: `sink` itself, which takes the inside rows as one (CoverageRecording::repeat_row).
+bool detail::RasterizerImpl::fill_rect_into(const Polylines& lines, FillRule rule, AntiAlias aa, int width,
+                                            int height, CoverageSink& sink, CoverageRecording* recording) {
   Rect r;
   int winding = 0;
   // Switched off (tests compare), or exact fills told to take the boundary sweep: the general path.
@@ -207,6 +218,12 @@ bool detail::RasterizerImpl::fill_rect(const Polylines& lines, FillRule rule, An
       made[kind] = true;
     }
     p.emit(y, sink);
+    if (kind == 1 && recording) {
+      // The rows up to the last inside one (y + 1 <= yb) are this one again.
+      const int inside_end = static_cast<int>(yb);
+      recording->repeat_row(y, inside_end);
+      y = inside_end - 1;
+    }
   }
   return true;
 }
