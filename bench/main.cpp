@@ -504,7 +504,8 @@ int main(int argc, char** argv) {
                             : std::string("median ms per frame")) +
             (opt.frames > 0 ? " of " + std::to_string(opt.frames) + " frames after 1 warm-up"
                             : " after 1 warm-up, at least 5 frames and " + fmt_ms(opt.seconds) + " s per engine and scene");
-  std::printf("%s; %s%s%s; %s; %u hardware threads, 1 used per engine%s; curves flattened to %s px (vraster, Cairo%s); %s.\n\n",
+  std::printf("%s; %s%s%s; %s; %u hardware threads, 1 used per engine%s; curves flattened to %s px (vraster, "
+              "Cairo%s); %s.\n\n",
               engines[kCairo]->version().c_str(),
               engines[kFreeType]->version().c_str(), kHaveBlend2D ? "; " : "",
               kHaveBlend2D ? engines[kBlend2D]->version().c_str() : "", cpu_model().c_str(),

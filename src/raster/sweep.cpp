@@ -211,7 +211,9 @@ template <bool kRanges>
       const int first = split.first[i], last = split.first[i] + split.past[i] + 1;
       x_lo = std::min(x_lo, first);
       x_hi = std::max(x_hi, last);
-      if constexpr (kRanges) ranges[count++] = static_cast<std::uint64_t>(first) << 32 | static_cast<std::uint32_t>(last);
+      if constexpr (kRanges) {
+        ranges[count++] = static_cast<std::uint64_t>(first) << 32 | static_cast<std::uint32_t>(last);
+      }
     }
   }
   return count;
@@ -338,10 +340,11 @@ template <FillRule R, bool kAvx2>
         x_hi = std::max(x_hi, piece_last_cell(xa, xb));
       }
     }
-    // A wide row's touched cells are marked now, while the columns still hold the row's pieces (the pieces' cells
-    // again, rather than noted piece by piece: most rows are narrow and need none). A row with pieces close together
-    // is marked touched all at once from x_lo to x_hi and swept in one run. Both tests depend on the row's own edges
-    // only, so a band or a queued fill decides every row as a whole sweep does.
+    // A wide row's touched cells are marked now, while the columns still hold the row's pieces: a sparse row's
+    // pieces as ranges of cells (already noted by the split in rows of few edges; otherwise from the pieces again,
+    // rather than noted piece by piece in every row: most rows of many edges are narrow or crowded and need none). A
+    // row with pieces close together is marked touched all at once from x_lo to x_hi and swept in one run. Both
+    // tests depend on the row's own edges only, so a band or a queued fill decides every row as a whole sweep does.
     const bool narrow = x_hi - x_lo < detail::kNarrowRowCells;
     const bool whole = static_cast<std::size_t>(x_hi - x_lo) <= kWholeRunCellsPerEdge * n;
     if (x_lo <= x_hi && !narrow) {
