@@ -83,6 +83,10 @@ void SolidCompositor<T>::row8(int y, int x0, int x1, const float* coverage) {
   if (premul_[3] == 0) return;
   const std::uint32_t color = packed8_;
   auto* px = reinterpret_cast<std::uint32_t*>(static_cast<void*>(image_.pixel(x0, y)));
+  if (x1 - x0 == 1) {  // a lone pixel (a third of a thin shape's rows): the kernel's arithmetic without its call
+    *px = detail::over8(scale8(color, detail::quantize8(coverage[0])), *px);
+    return;
+  }
   over_solid_(px, x1 - x0, coverage, 1.f, color);  // coverage in [0, 1]: quantize8 is round(255 c)
 }
 
