@@ -364,6 +364,50 @@ TEST(Threads, QueuedCoverageCallsAreTheSameRowByRow) {
   }
 }
 
+// Queued rectangles are recorded with their inside rows once (CoverageRecording::repeat_row) and replayed band by
+// band: their calls, row by row, are those of the same rectangle drawn alone, in every mode, for rectangles on row
+// lines and between them, inside one row, one row tall, crossing the image's sides and covering it all. A large
+// triangle starts the queue, so that the rectangles after it wait in it and are cut into bands.
+TEST(Threads, QueuedRectanglesGiveTheCallsOfRectanglesDrawnAlone) {
+  std::mt19937 rng(20261207);
+  // (every one reaches into the image: one wholly outside draws nothing and is not queued)
+  std::uniform_real_distribution<double> coord(-20, kSide - 5), size(25.2, 120);
+  std::vector<Path> rects = {Path().add_rect({10, 20, 100, 200}),           // on row and column lines
+                             Path().add_rect({10.5, 20.25, 50.75, 20.75}),  // inside one row
+                             Path().add_rect({30, 40, 200, 41}),            // one row tall
+                             Path().add_rect({-5.5, 100.5, 40.25, 260.75}), // left of the image too
+                             Path().add_rect({-30, -30, kSide + 30, kSide + 30})};
+  for (int i = 0; i < 40; ++i) {
+    const double x = coord(rng), y = coord(rng);
+    rects.push_back(Path().add_rect({x, y, x + size(rng), y + size(rng)}));
+  }
+  Polylines big;
+  flatten(big_triangle(), Affine{}, FlattenOptions{}, big);
+  for (const AntiAlias aa : kModes) {
+    if (aa == AntiAlias::Exact) continue;  // drawn at once, never queued
+    std::vector<CallRecorder> alone(rects.size()), queued(rects.size());
+    CallRecorder big_alone, big_queued;
+    Rasterizer one, many;
+    many.set_threads(3);
+    one.fill(big, FillRule::NonZero, aa, kSide, kSide, big_alone);
+    many.fill_queued(big, FillRule::NonZero, aa, kSide, kSide, std::make_unique<Forward>(big_queued));
+    for (std::size_t i = 0; i < rects.size(); ++i) {
+      Polylines lines;
+      flatten(rects[i], Affine{}, FlattenOptions{}, lines);
+      one.fill(lines, FillRule::EvenOdd, aa, kSide, kSide, alone[i]);
+      many.fill_queued(lines, FillRule::EvenOdd, aa, kSide, kSide, std::make_unique<Forward>(queued[i]));
+    }
+    EXPECT_EQ(many.queued_fills(), rects.size() + 1) << to_string(aa);
+    many.flush();
+    EXPECT_GT(many.last_flush_bands(), 1);
+    EXPECT_TRUE(big_alone.rows == big_queued.rows) << to_string(aa);
+    for (std::size_t i = 0; i < rects.size(); ++i) {
+      EXPECT_FALSE(alone[i].rows.empty()) << to_string(aa) << ", rectangle " << i;
+      EXPECT_TRUE(alone[i].rows == queued[i].rows) << to_string(aa) << ", rectangle " << i;
+    }
+  }
+}
+
 // Outlines with NaN or infinite points, or wholly outside the image, wait in the queue like any other (they are
 // built at flush): they draw what the same fill draws alone, and the fills around them are unchanged.
 TEST(Threads, QueuedFillsWithNonFiniteOrOffImagePointsDrawAsAlone) {
