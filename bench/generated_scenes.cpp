@@ -99,6 +99,10 @@ std::vector<GeneratedScene> generated_scenes() {
                          [](Random& r) {
                            return turned_rect(r(50, kSize - 50), r(50, kSize - 50), r(10, 150), r(10, 150), r(0, kPi));
                          }));
+  scenes.push_back(scene("opaque_rects", "2000 opaque turned rectangles of 10-60 px", 9, 2000, 1, "nonzero",
+                         [](Random& r) {
+                           return turned_rect(r(50, kSize - 50), r(50, kSize - 50), r(10, 60), r(10, 60), r(0, kPi));
+                         }));
   scenes.push_back(scene("opaque_triangles", "300 opaque triangles with corners anywhere in the frame", 7, 300, 1,
                          "nonzero", [](Random& r) {
                            const double x0 = r(0, kSize), y0 = r(0, kSize), x1 = r(0, kSize), y1 = r(0, kSize);

@@ -60,7 +60,7 @@ struct Options {
                "usage: vraster_bench [SCENE_DIR] [options]\n"
                "  SCENE_DIR        folder of *.svg scenes (default: <repo>/../shared/bench/scenes)\n"
                "  --generated      the built-in generated scenes instead of a folder's (discs, rings, ellipses,\n"
-               "                   rectangles, turned rectangles, opaque triangles, thin lines)\n"
+               "                   rectangles, turned rectangles, opaque ones, opaque triangles, thin lines)\n"
                "  --frames N       timed frames per engine and scene (default: >= 5 frames and --time)\n"
                "  --time SECONDS   minimum timed seconds per engine and scene (default 0.5)\n"
                "  --scene NAME     only this scene (file name without .svg); repeatable, or comma-separated\n"

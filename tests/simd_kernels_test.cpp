@@ -208,7 +208,8 @@ TEST(SourceOverKernels, SolidCompositorFollowsTheRoundingRuleOnShortRuns) {
 
 #ifdef VRASTER_HAVE_AVX2_KERNELS
 // The hand-written loops `constant` and `solid` against the portable ones on runs of every length up to 70 at every
-// position against a 32-byte boundary: premultiplied pixels, coverage out of range and NaN, odd scales.
+// position against a 32-byte boundary: premultiplied pixels, coverage out of range and NaN, odd scales, opaque
+// colours over full coverage.
 void expect_portable_bits(detail::Over8ConstantFn constant, detail::Over8SolidFn solid) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> unit(-0.3f, 1.3f);
@@ -223,16 +224,22 @@ void expect_portable_bits(detail::Over8ConstantFn constant, detail::Over8SolidFn
         const std::uint32_t al = rng() % 256;
         p = al << 24 | (rng() % (al + 1)) << 16 | (rng() % (al + 1)) << 8 | (rng() % (al + 1));
       }
-      for (auto& c : cov) c = rng() % 5 == 0 ? (rng() % 2 ? 0.f : 1.f) : unit(rng);
+      // Every other run: an opaque colour over long stretches of full coverage (and some above 1), where the AVX2
+      // loop stores eight pixels without reading them.
+      const bool opaque = (n + offset) % 2 == 1;
+      for (auto& c : cov) {
+        c = opaque ? (rng() % 8 ? (rng() % 4 ? 1.f : 1.25f) : unit(rng))
+                   : (rng() % 5 == 0 ? (rng() % 2 ? 0.f : 1.f) : unit(rng));
+      }
       if (n > 0) cov[static_cast<std::size_t>(offset)] = std::numeric_limits<float>::quiet_NaN();  // NaN: 0
-      const std::uint32_t al = rng() % 256;
+      const std::uint32_t al = opaque ? 255 : rng() % 256;
       const std::uint32_t color = al << 24 | (rng() % (al + 1)) << 16 | (rng() % (al + 1)) << 8 | (rng() % (al + 1));
       a = base;
       b = base;
       constant(a.data() + offset, n, color);
       detail::over8_constant_portable(b.data() + offset, n, color);
       ASSERT_EQ(a, b) << "constant, n " << n << " offset " << offset;  // also: nothing outside the run written
-      const float scale = scales[rng() % std::size(scales)];
+      const float scale = opaque && rng() % 2 ? 1.f : scales[rng() % std::size(scales)];
       a = base;
       b = base;
       solid(a.data() + offset, n, cov.data() + offset, scale, color);

@@ -38,6 +38,21 @@ using namespace avx2;
   const __m256i c16 = _mm256_unpacklo_epi8(_mm256_set1_epi32(static_cast<int>(c)), zero);
   const __m256 sc = _mm256_set1_ps(scale);
   int i = 0;
+  if (n >= 8 && c >> 24 == 255 && scale == 1.f) {
+    // An opaque colour: eight fully covered pixels become the colour, whatever they were (over8 of an opaque source
+    // adds scale8(d, 0) = 0), so they are stored without reading them.
+    const __m256i colour = _mm256_set1_epi32(static_cast<int>(c));
+    const __m256 full = _mm256_set1_ps(1.f);
+    for (; i + 8 <= n; i += 8) {
+      auto* p = reinterpret_cast<__m256i*>(px + i);
+      const __m256 v = _mm256_loadu_ps(coverage + i);
+      if (_mm256_movemask_ps(_mm256_cmp_ps(v, full, _CMP_GE_OQ)) == 0xFF) {
+        _mm256_storeu_si256(p, colour);
+      } else {
+        _mm256_storeu_si256(p, over_coverage8(_mm256_loadu_si256(p), c16, quantize8x8(v, sc)));
+      }
+    }
+  }
   for (; i + 8 <= n; i += 8) {
     auto* p = reinterpret_cast<__m256i*>(px + i);
     const __m256i k = quantize8x8(_mm256_loadu_ps(coverage + i), sc);
