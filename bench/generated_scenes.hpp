@@ -12,7 +12,6 @@ namespace bench {
 
 struct GeneratedScene {
   std::string name;
-  std::string description;
   std::string svg;
 };
 

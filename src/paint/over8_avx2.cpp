@@ -40,7 +40,8 @@ using namespace avx2;
   int i = 0;
   if (n >= 8 && c >> 24 == 255 && scale == 1.f) {
     // An opaque colour: eight fully covered pixels become the colour, whatever they were (over8 of an opaque source
-    // adds scale8(d, 0) = 0), so they are stored without reading them.
+    // adds scale8(d, 0) = 0), so they are stored without reading them. A loop of its own, entered only by runs of
+    // eight or more: the test inside the one loop cost the short runs most calls are 1.4 % (thin_slivers).
     const __m256i colour = _mm256_set1_epi32(static_cast<int>(c));
     const __m256 full = _mm256_set1_ps(1.f);
     for (; i + 8 <= n; i += 8) {

@@ -150,7 +150,7 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
     drawn_at_once_ += work;
     return true;
   };
-  bool recorded = fill_rect(lines, rule, aa, width, height, q.recording);
+  bool recorded = fill_rect(lines, rule, aa, width, height, q.recording, &q.recording);
   if (recorded && at_once(static_cast<double>(q.recording.pixels()) / kRecordedPixelsPerUnit)) {
     q.recording.replay(q.recording.y_min(), q.recording.y_max(), sink);
     return;

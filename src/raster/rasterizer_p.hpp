@@ -224,21 +224,18 @@ class RasterizerImpl {
                    std::unique_ptr<CoverageSink> owned);
   void flush();
   std::size_t queued_fills() const { return queued_; }
-  /// Draws the queue (flush() without ending the frame: the count of small fills drawn at once goes on).
-  void run_queue();
   int last_flush_bands_ = 0;
 
  private:
+  /// Draws the queue (flush() without ending the frame: the count of small fills drawn at once goes on).
+  void run_queue();
   /// Whether edges_ (clipped) have at most Rasterizer::kMaxExactCrossings crossings inside pixel rows
   /// (exact_budget.cpp).
   bool exact_within_budget(int height);
-  /// One axis-aligned rectangle: its coverage without a sweep (rect.cpp). False when `lines` is not one.
-  bool fill_rect(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
-  /// fill_rect into a recording, the inside rows recorded once (CoverageRecording::repeat_row).
-  bool fill_rect(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
-                 CoverageRecording& recording);
-  bool fill_rect_into(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink,
-                      CoverageRecording* recording);
+  /// One axis-aligned rectangle: its coverage without a sweep (rect.cpp). False when `lines` is not one. When
+  /// `recording` is given it is `sink` itself, and takes the inside rows once (CoverageRecording::repeat_row).
+  bool fill_rect(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink,
+                 CoverageRecording* recording = nullptr);
   void build_edges(const Polylines& lines, int width, int height) {
     detail::build_edges(lines, width, height, edges_, y_min_, y_max_);
   }

@@ -95,18 +95,7 @@ struct RowPlan {
 }  // namespace
 
 bool detail::RasterizerImpl::fill_rect(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
-                                       CoverageSink& sink) {
-  return fill_rect_into(lines, rule, aa, width, height, sink, nullptr);
-}
-
-bool detail::RasterizerImpl::fill_rect(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
-                                       CoverageRecording& recording) {
-  return fill_rect_into(lines, rule, aa, width, height, recording, &recording);
-}
-
-// recording: `sink` itself, which takes the inside rows as one (CoverageRecording::repeat_row).
-bool detail::RasterizerImpl::fill_rect_into(const Polylines& lines, FillRule rule, AntiAlias aa, int width,
-                                            int height, CoverageSink& sink, CoverageRecording* recording) {
+                                       CoverageSink& sink, CoverageRecording* recording) {
   Rect r;
   int winding = 0;
   // Switched off (tests compare), or exact fills told to take the boundary sweep: the general path.
