@@ -224,8 +224,9 @@ void RasterizerImpl::build_queued(QueuedFill& q, BandScratch& s) const {
     q.kind = QueuedFill::Kind::Aliased;
   } else {
     edge_columns(q.edges, q.x_base, q.columns);
-    if (fits_dense(q.edges, q.y_min, q.y_max, q.columns, dense_limit_)) {
-      q.kind = QueuedFill::Kind::Dense;
+    const DenseKind dense = dense_kind(q.edges, q.y_min, q.y_max, q.columns, dense_limit_);
+    if (dense != DenseKind::None) {
+      q.kind = dense == DenseKind::Ranged ? QueuedFill::Kind::Ranged : QueuedFill::Kind::Dense;
     } else {
       detail::bucket_edges(q.edges, q.y_min, q.y_max, false, q.order, q.bucket_start, s.bucket);
       q.kind = QueuedFill::Kind::Analytic;
@@ -260,6 +261,7 @@ void RasterizerImpl::run_queued_band(int band, BandScratch& s) {
         detail::sweep_sampled(q.edges, y0, y1, q.rule, sample_pattern(q.aa), q.width, *q.sink);  // supersample.cpp
         break;
       case QueuedFill::Kind::Dense:
+      case QueuedFill::Kind::Ranged:
         sweep_dense_band(q, y0, y1, s);
         break;
       case QueuedFill::Kind::Recorded:

@@ -117,19 +117,21 @@ struct RowBatchBuffers {
 };
 /// Sizes `batch` and `coverage` for batches of up to `rows` rows (kBatchRows at most) of `slot` floats each.
 RowBatchBuffers row_batch_buffers(std::vector<CoverageRow>& batch, std::vector<float>& coverage, int rows, int slot);
-/// Whether `edges` (rows [y_min, y_max), `columns` columns) take the dense sweep: small paths, a few thousand cells,
-/// and thin shapes of any size.
-bool fits_dense(const std::vector<Edge>& edges, int y_min, int y_max, int columns, std::int64_t dense_limit);
+/// Which dense sweep `edges` (rows [y_min, y_max), `columns` columns) take, if any: Dense for small paths, a few
+/// thousand cells, and thin shapes of any size; Ranged for fills whose rows hold few pieces (convex shapes), whose
+/// rows note each piece so that pieces far apart are swept as clusters with spans between them.
+enum class DenseKind : std::uint8_t { None, Dense, Ranged };
+DenseKind dense_kind(const std::vector<Edge>& edges, int y_min, int y_max, int columns, std::int64_t dense_limit);
 /// The buffers of a dense sweep (kept from fill to fill; the block stays zero between fills).
 struct DenseScratch {
   std::vector<double>& block;       // rows x columns of cells
-  std::vector<int>& extent;         // first and last cell written, per row
+  std::vector<int>& notes;          // per row: first and last cell written (and pieces' ranges: DenseRows)
   std::vector<CoverageRow>& batch;  // rows handed to the sink together
   std::vector<float>& coverage;     // their coverage, a slot per row
 };
 /// The dense sweep of rows [y_from, y_to) of `edges` (cells [x_base, x_base + columns)).
-void sweep_dense_range(FillRule rule, const std::vector<Edge>& edges, int y_from, int y_to, int x_base, int columns,
-                       int width, DenseScratch s, CoverageSink& sink);
+void sweep_dense_range(FillRule rule, DenseKind kind, const std::vector<Edge>& edges, int y_from, int y_to,
+                       int x_base, int columns, int width, DenseScratch s, CoverageSink& sink);
 
 /// Crossings of `edges` (clipped to rows [0, height)) inside pixel rows: per row, the pairs of edges whose x order
 /// at the row's top (ties by x at the bottom) differs from their order at its bottom. Counting stops once it
@@ -177,17 +179,17 @@ class CoverageRecording final : public CoverageSink {
 struct QueuedFill {
   // Unbuilt: only `lines` so far (or, with `prebuilt`, the edges already); flush() builds the edges (on the pool's
   // threads) and picks one of the kinds after it (Empty: no edge inside the image).
-  enum class Kind : std::uint8_t { Unbuilt, Empty, Analytic, Aliased, Sampled, Dense, Recorded };
+  enum class Kind : std::uint8_t { Unbuilt, Empty, Analytic, Aliased, Sampled, Dense, Ranged, Recorded };
   Kind kind = Kind::Analytic;
   Polylines lines;  // Unbuilt: the fill's outline, as fill_queued got it
   bool prebuilt = false;  // Unbuilt: edges, y_min and y_max are built already (the fill that started the queue)
-  int x_base = 0, columns = 0;  // Dense: the cells the edges reach (edge_columns)
+  int x_base = 0, columns = 0;  // Dense, Ranged: the cells the edges reach (edge_columns)
   FillRule rule = FillRule::NonZero;
   AntiAlias aa = AntiAlias::Analytic;
   int width = 0, height = 0;
   int y_min = 0, y_max = 0;  // rows the fill touches (once built)
   double work = 0;           // band_work's estimate (of the outline while unbuilt)
-  std::vector<Edge> edges;   // Analytic / Aliased / Sampled / Dense
+  std::vector<Edge> edges;   // Analytic / Aliased / Sampled / Dense / Ranged
   std::vector<std::uint32_t> order, bucket_start;  // Analytic / Aliased: the edge table
   CoverageRecording recording;                      // Recorded
   std::unique_ptr<CoverageSink> sink;
@@ -259,7 +261,7 @@ class RasterizerImpl {
     std::vector<CoverageRow> batch;       // analytic and queued dense sweeps: rows handed to the sink together
     std::vector<float> batch_coverage;    // analytic sweep: the narrow rows' coverage (queued dense: `coverage`)
     std::vector<double> dense_block;      // queued dense fills: rows x columns of cells, zero between fills
-    std::vector<int> dense_extent;        // queued dense fills: first and last cell written, per row
+    std::vector<int> dense_notes;         // queued dense fills: what each row's pieces wrote (DenseRows)
     BucketScratch bucket;                 // building queued fills
   };
   /// How many bands rows [y_min_, y_max_) of edges_ are cut into: 1 without threads, for a sink that wants its
@@ -302,7 +304,7 @@ class RasterizerImpl {
   std::vector<float> row_coverage_;          // dense sweep: coverage handed to the sink, a slot per batched row
   std::vector<CoverageRow> dense_batch_;     // dense sweep: the rows of a batch
   std::vector<double> dense_block_;          // small paths: rows x columns of cells, zero between fills
-  std::vector<int> dense_extent_;            // small paths: first and last cell written, per row
+  std::vector<int> dense_notes_;             // dense fills: what each row's pieces wrote (DenseRows)
   std::vector<float> rect_coverage_;         // fill_rect: the coverage of up to three rows
   std::vector<double> rect_cells_;           // fill_rect: analytic cells of one row, zero between fills
   std::vector<float> mask_cells_;            // fill_mask: rows x stride float cells, zero between fills
