@@ -68,6 +68,14 @@ struct CoverageRow {
   const float* coverage;
 };
 
+/// Pixels a sink lets the rasterizer blend into itself (CoverageSink::solid_over8): one colour, source-over, onto 8-bit
+/// premultiplied RGBA rows. Row y starts at pixels + y * stride; `color` is premultiplied, R in the low byte.
+struct SolidOver8 {
+  std::uint8_t* pixels = nullptr;
+  std::ptrdiff_t stride = 0;
+  std::uint32_t color = 0;
+};
+
 /// The one interface between the rasterizer and whoever turns coverage into pixels.
 /// Calls come in increasing y; within a row in increasing, non-overlapping x. Coverage is in (0, 1].
 /// Pixels not mentioned have coverage 0.
@@ -96,6 +104,10 @@ class CoverageSink {
   /// pixels may start fetching them into the cache while the rasterizer accumulates the fill (the default ignores
   /// it). Only a hint: it changes no result.
   virtual void expect(int /*y0*/, int /*y1*/, int /*x0*/, int /*x1*/) {}
+  /// Whether the sink blends one colour source-over into 8-bit pixels (SolidCompositor): then it fills `target`, and
+  /// the rasterizer may blend some runs itself, in the pass that turns its cells into coverage (no coverage row in
+  /// between), with exactly the pixels row() would give them. Other sinks (the default) get every run as row().
+  virtual bool solid_over8(SolidOver8& /*target*/) const { return false; }
 };
 
 /// A device-space line segment, stored top to bottom (y0 < y1), with the direction of the original segment.

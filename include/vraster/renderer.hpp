@@ -27,6 +27,8 @@ class SolidCompositor final : public CoverageSink {
   void expect(int y0, int y1, int x0, int x1) override;
   /// A copy drawing the same colour onto the same image.
   std::unique_ptr<CoverageSink> clone() const override { return std::make_unique<SolidCompositor>(*this); }
+  /// 8-bit images with a colour that is not fully transparent: the rasterizer may blend runs itself.
+  bool solid_over8(SolidOver8& target) const override;
 
  private:
   void span8(int y, int x0, int x1, float coverage);

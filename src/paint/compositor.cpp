@@ -30,6 +30,17 @@ SolidCompositor<T>::SolidCompositor(BasicImage<T>& image, Color color) : image_(
 }
 
 template <class T>
+bool SolidCompositor<T>::solid_over8(SolidOver8& target) const {
+  if constexpr (sizeof(T) == 1) {
+    if (premul_[3] == 0 || image_.width <= 0 || image_.height <= 0) return false;  // nothing to draw: row() returns
+    target = {image_.data.data(), static_cast<std::ptrdiff_t>(image_.width) * 4, packed8_};
+    return true;
+  } else {
+    return false;
+  }
+}
+
+template <class T>
 void SolidCompositor<T>::expect(int y0, int y1, int x0, int x1) {
   detail::prefetch_pixels(ImageView<T>::of(image_), y0, y1, x0, x1);
 }

@@ -114,7 +114,7 @@ template <FillRule R>
 // of 1 rounds to 1.0f when it becomes a float (the floats below 1 are 2^-24 apart), which is what snapping it to 1
 // gives, so the four floats are snapped()'s.
 template <FillRule R>
-[[gnu::target("avx2"), gnu::always_inline]] inline int sweep_block_avx2(__m256d v, float* cov, __m256d& carry) {
+[[gnu::target("avx2"), gnu::always_inline]] inline int sweep_block_avx2(__m256d v, __m128& cov, __m256d& carry) {
   static_assert(kSnap < 0x1p-25, "coverage within kSnap of 1 rounds to 1.0f");
   const __m256d zero = _mm256_setzero_pd();
   const __m256d lo = _mm256_set1_pd(kSnap);
@@ -124,8 +124,16 @@ template <FillRule R>
   carry = _mm256_add_pd(carry, _mm256_permute4x64_pd(t2, 0xFF));
   const __m256d c = rule_coverage_avx2<R>(s);  // >= 0 and never NaN: below kSnap is exactly where it snaps to 0
   const __m256d below = _mm256_cmp_pd(c, lo, _CMP_LT_OQ);
-  _mm_storeu_ps(cov, _mm256_cvtpd_ps(_mm256_andnot_pd(below, c)));
+  cov = _mm256_cvtpd_ps(_mm256_andnot_pd(below, c));
   return _mm256_movemask_pd(below) ^ 0xF;
+}
+// The same, the four floats stored at cov.
+template <FillRule R>
+[[gnu::target("avx2"), gnu::always_inline]] inline int sweep_block_avx2(__m256d v, float* cov, __m256d& carry) {
+  __m128 c;
+  const int nonzero = sweep_block_avx2<R>(v, c, carry);
+  _mm_storeu_ps(cov, c);
+  return nonzero;
 }
 
 template <FillRule R>

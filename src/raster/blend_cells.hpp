@@ -1,0 +1,55 @@
+// Cells to pixels in one pass: a run of accumulation cells -> coverage (the sweep's blocks of four, cells.hpp) ->
+// one colour blended source-over onto 8-bit premultiplied pixels (SolidOver8), eight pixels a step, with the
+// arithmetic of SolidCompositor::row (paint/over8_avx2.hpp). What it saves is the coverage row in between, the pass
+// over it and the call: about a tenth of the frame of convex shapes (docs/performance.md).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+
+#include "raster/cells.hpp"
+#include "raster/cpu.hpp"
+
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+#include "paint/over8_avx2.hpp"
+
+namespace vraster::detail {
+
+/// Sweeps cells[0, count) from the running sum `sum` (left past them) in blocks of four, zeroing them, and blends the
+/// coverage of the first `pixels` (at most count) onto px[0, pixels) with colour `color` (premultiplied, not fully
+/// transparent). The cells up to three past count, which the last block reads, must be zero (untouched); they are
+/// zeroed too. The coverage is sweep_cells' to the bit, and the pixels are what SolidCompositor::row gives it (a
+/// coverage of 0 leaves a pixel as it is).
+template <FillRule R>
+[[gnu::target("avx2")]] inline void blend_cells_avx2(double* cells, int count, int pixels, double& sum,
+                                                     std::uint32_t* px, std::uint32_t color) {
+  namespace a2 = avx2;
+  const __m256i c16 = _mm256_unpacklo_epi8(_mm256_set1_epi32(static_cast<int>(color)), _mm256_setzero_si256());
+  __m256d carry = _mm256_set1_pd(sum);
+  for (int i = 0; i < count; i += 8) {
+    // Coverage in registers: a load of floats stored as two halves moments before would wait for the stores.
+    __m128 low, high = _mm_setzero_ps();
+    sweep_block_avx2<R>(load_fresh_cells(cells + i), low, carry);
+    _mm256_storeu_pd(cells + i, _mm256_setzero_pd());
+    if (i + 4 < count) {
+      sweep_block_avx2<R>(load_fresh_cells(cells + i + 4), high, carry);
+      _mm256_storeu_pd(cells + i + 4, _mm256_setzero_pd());
+    }
+    const int n = std::min(8, pixels - i);
+    if (n <= 0) continue;  // cells right of the image: swept for the sum only
+    const __m256i k = a2::quantize8x8(_mm256_set_m128(high, low), _mm256_set1_ps(1.f));
+    std::uint32_t* const p = px + i;
+    if (n == 8) {
+      auto* q = reinterpret_cast<__m256i*>(p);
+      _mm256_storeu_si256(q, a2::over_coverage8(_mm256_loadu_si256(q), c16, k));
+    } else {
+      const __m256i d = _mm256_maskload_epi32(reinterpret_cast<const int*>(p), a2::first_lanes(n));
+      a2::store_first(p, a2::over_coverage8(d, c16, k), n);
+    }
+  }
+  sum = _mm_cvtsd_f64(_mm256_castpd256_pd128(carry));
+}
+
+}  // namespace vraster::detail
+
+#endif
