@@ -1,6 +1,6 @@
-// The rasterizer blends some runs straight into a SolidCompositor's pixels (CoverageSink::solid_over8: sparse rows'
-// clusters, in the row sweep and in the dense sweep with noted rows), from its cells, without a coverage row in
-// between. The pixels must be exactly those of the same fill handed to the compositor as spans and rows: the same
+// The rasterizer blends most runs straight into a SolidCompositor's pixels (CoverageSink::solid_over8: every row of
+// the dense sweep, and the row sweep's narrow rows and sparse rows' clusters), from its cells, without a coverage row
+// in between. The pixels must be exactly those of the same fill handed to the compositor as spans and rows: the same
 // compositor behind a sink that forwards the calls and does not offer its pixels.
 #include <gtest/gtest.h>
 
@@ -56,7 +56,9 @@ Scene random_scene(std::uint32_t seed, int w, int h, int shapes) {
         rule = FillRule::EvenOdd;
         break;
       case 2: {
-        const double turn = 3.14159 * unit(rng), a = size, b = size * (0.05 + unit(rng));
+        // (a third of them slivers 0.01 to 0.5 px wide: the dense sweep of thin shapes)
+        const double turn = 3.14159 * unit(rng), a = size;
+        const double b = unit(rng) < 0.3 ? 0.005 + 0.25 * unit(rng) : size * (0.05 + unit(rng));
         const double c = std::cos(turn), s = std::sin(turn);
         path.move_to(cx + a * c - b * s, cy + a * s + b * c);
         path.line_to(cx - a * c - b * s, cy - a * s + b * c);

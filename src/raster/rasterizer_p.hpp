@@ -284,6 +284,7 @@ class RasterizerImpl {
   void sweep_analytic(FillRule rule, int width, CoverageSink& sink);
   void sweep_sampled(FillRule rule, AntiAlias aa, int width, CoverageSink& sink);
   bool sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink);
+  [[gnu::noinline]] void sweep_ranged(FillRule rule, int width, int x_base, int columns, CoverageSink& sink);
   /// The dense sweep of rows [y_from, y_to) of a queued fill, on one thread.
   static void sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s);
   void bucket_edges(bool by_sample_row) {

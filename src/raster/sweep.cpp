@@ -316,8 +316,9 @@ template <FillRule R, bool kAvx2>
   std::uint64_t* const bits = b.bits;
   float* const cov = b.cov;
   RowBatch batch(sink, b.batch, detail::kNarrowRowCoverage);  // the narrow rows
-  // Sparse rows' clusters blended straight into the sink's pixels where it allows (resolve_cluster). Not the rows
-  // swept whole: their long runs were 3-5 % slower so (the coverage row's two tight loops against one longer one).
+  // Narrow rows and sparse rows' clusters blended straight into the sink's pixels where it allows (resolve_cluster).
+  // Not the rows swept whole: their long runs were 3-5 % slower so (the coverage row's two tight loops against one
+  // longer one).
   SolidOver8 pixels;
   const SolidOver8* const target = kAvx2 && sink.solid_over8(pixels) ? &pixels : nullptr;
   // a.x[k]: where active edge k enters the current row (its x at max(y0, row top)). An edge that goes on below the
@@ -423,6 +424,11 @@ template <FillRule R, bool kAvx2>
       } else {
         resolve_clusters<R, kAvx2>(y, width, a.ranges.data(), clusters, acc, cov, target, sink);
       }
+      continue;
+    }
+    if (target) {  // one cluster, on the grid sweep_narrow_row takes (blocks of four from x_lo)
+      double sum = 0;
+      resolve_cluster<R, kAvx2>(y, width, 0, x_lo, x_hi, width, acc, cov, sum, target, sink);
       continue;
     }
     float* const row_coverage = batch.slot();
@@ -584,8 +590,10 @@ template <FillRule R, DenseRows kMode, bool kAvx2>
   RowBatch batch(sink, out, static_cast<std::size_t>(stride));
   const double shift = x_base;
   constexpr int kNotes = row_notes(kMode);
-  SolidOver8 pixels;  // clusters blended straight into the sink's pixels where it allows (resolve_cluster)
-  const SolidOver8* const target = kMode == DenseRows::Ranged && kAvx2 && sink.solid_over8(pixels) ? &pixels : nullptr;
+  // Every row blended straight into the sink's pixels where it allows (resolve_cluster): small shapes 5-10 % faster,
+  // and no loss on wide rows here (docs/performance.md).
+  SolidOver8 pixels;
+  const SolidOver8* const target = kAvx2 && sink.solid_over8(pixels) ? &pixels : nullptr;
   for (int r = 0; kMode != DenseRows::Whole && r < y_max - y_min; ++r) {
     notes[kNotes * r] = columns;
     notes[kNotes * r + 1] = -1;
@@ -647,6 +655,11 @@ template <FillRule R, DenseRows kMode, bool kAvx2>
       }
       const int from = row_extent[0] & ~3, to = std::min(columns, (row_extent[1] + 4) & ~3);
       double sum = 0;
+      if (target) {
+        resolve_cluster<R, kAvx2>(y, width, x_base, from, std::min(row_extent[1], columns - 1), width - x_base, row,
+                                  cov, sum, target, sink);
+        continue;
+      }
       if (to - from <= detail::kNarrowRowCells) {
         // A short stretch (most rows of small and medium shapes): the narrow row's blocks (on the same grid, so the
         // same sums) and its mask of nonzero pixels instead of trimming loops.
@@ -676,6 +689,11 @@ template <FillRule R, DenseRows kMode, bool kAvx2>
         detail::trim_zeros(cov, a, b);
       }
     } else {
+      if (target) {
+        double sum = 0;
+        resolve_cluster<R, kAvx2>(y, width, x_base, 0, columns - 1, width - x_base, row, cov, sum, target, sink);
+        continue;
+      }
       // The whole row (whole blocks from column 0, as sweep_cells adds them) and which pixels have coverage.
       std::uint32_t nonzero;
       c = detail::sweep_narrow_row<R, kAvx2>(0, columns - 1, row, cov, nonzero);
@@ -849,18 +867,23 @@ void detail::sweep_dense_range(FillRule rule, DenseKind kind, const std::vector<
 bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink) {
   const DenseKind kind = dense_kind(edges_, y_min_, y_max_, columns, dense_limit_);
   if (kind == DenseKind::None) return false;
-  const int bands = kind == DenseKind::Ranged ? band_count(sink) : 1;  // large fills: in bands, as the row sweep
-  if (bands <= 1) {
+  if (kind == DenseKind::Ranged) {
+    sweep_ranged(rule, width, x_base, columns, sink);
+  } else {
     sweep_dense_range(rule, kind, edges_, y_min_, y_max_, x_base, columns, width,
                       {dense_block_, dense_notes_, dense_batch_, row_coverage_}, sink);
-    return true;
   }
-  // Rows are swept one by one from the cells of their own pieces: bands give the bits of one sweep.
-  in_bands(bands, [&](int y0, int y1, BandScratch& s) {
-    sweep_dense_range(rule, kind, edges_, y0, y1, x_base, columns, width,
+  return true;
+}
+
+// A large fill with its rows' pieces noted: in bands with threads, as the row sweep (rows are swept one by one from
+// the cells of their own pieces, so bands give the bits of one sweep). Out of line: small fills come by sweep_dense
+// by the thousand.
+void detail::RasterizerImpl::sweep_ranged(FillRule rule, int width, int x_base, int columns, CoverageSink& sink) {
+  in_bands(band_count(sink), [&](int y0, int y1, BandScratch& s) {
+    sweep_dense_range(rule, DenseKind::Ranged, edges_, y0, y1, x_base, columns, width,
                       {s.dense_block, s.dense_notes, s.batch, s.coverage}, sink);
   });
-  return true;
 }
 
 // Rows [y_from, y_to) of a queued dense fill.
