@@ -10,6 +10,8 @@
 #include <random>
 
 #include "raster/cpu.hpp"
+#include "vraster/canvas.hpp"
+#include "vraster/composite.hpp"
 #include "vraster/renderer.hpp"
 
 namespace vraster {
@@ -32,7 +34,9 @@ class CoverageOnly final : public CoverageSink {
 // pixels to larger than the image, some crossing its sides; every fill in its own colour, opaque or translucent,
 // onto a noisy background.
 struct Scene {
-  std::vector<Polylines> fills;
+  std::vector<Path> paths;  // each drawn under its own transform
+  std::vector<Affine> transforms;
+  std::vector<Polylines> fills;  // the paths flattened under their transforms
   std::vector<FillRule> rules;
   std::vector<Color> colors;
 };
@@ -77,9 +81,12 @@ Scene random_scene(std::uint32_t seed, int w, int h, int shapes) {
         path.add_ellipse({cx, cy}, size, size * (0.2 + 0.8 * unit(rng)));
         break;
     }
+    const Affine turn = Affine::rotate(90 * unit(rng), w / 2.0, h / 2.0);
     Polylines lines;
-    flatten(path, Affine::rotate(90 * unit(rng), w / 2.0, h / 2.0), FlattenOptions{}, lines);
+    flatten(path, turn, FlattenOptions{}, lines);
     scene.fills.push_back(std::move(lines));
+    scene.paths.push_back(std::move(path));
+    scene.transforms.push_back(turn);
     scene.rules.push_back(rule);
     const float alpha = unit(rng) < 0.4 ? 1.f : static_cast<float>(0.05 + 0.9 * unit(rng));
     scene.colors.push_back(Color{static_cast<float>(unit(rng)), static_cast<float>(unit(rng)),
@@ -143,6 +150,118 @@ TEST(BlendCells, TheScenesDrawMostOfTheImage) {
     changed += std::memcmp(&image.data[i], &before.data[i], 4) != 0 ? 1 : 0;
   }
   EXPECT_GT(changed, image.data.size() / 4 / 2);
+}
+
+
+// The canvas's Compositor offers its pixels too, under a solid paint, source-over and global alpha 1. Drawn into a
+// view of the whole image (the rasterizer blends) and into a view of part of it (it must not: the view does not
+// start at the fill's (0, 0); the compositor clips the rows), against the same compositor fed coverage only.
+class CompositorCoverageOnly final : public CoverageSink {
+ public:
+  explicit CompositorCoverageOnly(Compositor<std::uint8_t>& inner) : inner_(inner) {}
+  void span(int y, int x0, int x1, float coverage) override { inner_.span(y, x0, x1, coverage); }
+  void row(int y, int x0, int x1, const float* coverage) override { inner_.row(y, x0, x1, coverage); }
+  bool takes_concurrent_rows() const override { return true; }
+
+ private:
+  Compositor<std::uint8_t>& inner_;
+};
+
+TEST(BlendCells, CompositorWithASolidPaintGivesTheCoverageRowsPixels) {
+  for (std::uint32_t seed = 1; seed <= 6; ++seed) {
+    const int w = 150 + static_cast<int>(seed * 41 % 300), h = 90 + static_cast<int>(seed * 29 % 200);
+    const Scene scene = random_scene(seed + 100, w, h, 40);
+    for (const bool part : {false, true}) {
+      Image fused = background(w, h, seed), rows = background(w, h, seed);
+      Rasterizer r;
+      r.set_threads(seed % 2 + 1);
+      for (std::size_t i = 0; i < scene.fills.size(); ++i) {
+        for (Image* image : {&fused, &rows}) {
+          ImageView<std::uint8_t> view = ImageView<std::uint8_t>::of(*image);
+          if (part) {  // rows 7 .. h - 5, columns 11 .. w - 3
+            view = {image->pixel(11, 7), 11, 7, w - 14, h - 12, view.stride};
+          }
+          Compositor<std::uint8_t> compositor;
+          compositor.set(view, Paint::solid(scene.colors[i]), Affine{}, CompositeOp::SourceOver);
+          SolidOver8 offered;
+          EXPECT_EQ(compositor.solid_over8(offered), true) << "a solid paint, source-over, alpha 1";
+          if (image == &fused) {
+            r.fill(scene.fills[i], scene.rules[i], AntiAlias::Analytic, w, h, compositor);
+          } else {
+            CompositorCoverageOnly sink(compositor);
+            r.fill(scene.fills[i], scene.rules[i], AntiAlias::Analytic, w, h, sink);
+          }
+        }
+      }
+      ASSERT_EQ(fused.data, rows.data) << "seed " << seed << (part ? ", a view of part of the image" : "");
+    }
+  }
+}
+
+// Only where row() would give the same pixels: not under a global alpha below 1, another operator or a gradient.
+TEST(BlendCells, CompositorOffersItsPixelsOnlyForASolidColourOverAtFullAlpha) {
+  Image image(8, 8);
+  Compositor<std::uint8_t> c;
+  SolidOver8 t;
+  const Color red{1, 0, 0, 0.5f};
+  c.set(ImageView<std::uint8_t>::of(image), Paint::solid(red), Affine{}, CompositeOp::SourceOver, 1);
+  EXPECT_TRUE(c.solid_over8(t));
+  EXPECT_EQ(t.width, 8);
+  c.set(ImageView<std::uint8_t>::of(image), Paint::solid(red), Affine{}, CompositeOp::SourceOver, 0.5f);
+  EXPECT_FALSE(c.solid_over8(t));
+  c.set(ImageView<std::uint8_t>::of(image), Paint::solid(red), Affine{}, CompositeOp::Multiply, 1);
+  EXPECT_FALSE(c.solid_over8(t));
+  Paint ramp = Paint::linear({0, 0}, {8, 0});
+  ramp.add_stop(0, red);
+  ramp.add_stop(1, Color{0, 0, 1, 1});
+  c.set(ImageView<std::uint8_t>::of(image), ramp, Affine{}, CompositeOp::SourceOver, 1);
+  EXPECT_FALSE(c.solid_over8(t));
+}
+
+// Through the canvas: fills under a pixel-aligned clip (the clip box only: the rasterizer blends, at the region's
+// corner), in a layer (a view that starts inside the image), on 1 and 2 threads, against the same drawing under one
+// more clip that leaves a mask (a notch off pixel (0, 0)), which is full on every other pixel and keeps the
+// compositor's coverage rows. Every pixel but (0, 0) must be the same.
+void draw_on_canvas(const Scene& scene, Image& image, bool with_mask, bool in_layer, int threads) {
+  Canvas canvas(image);
+  canvas.set_threads(threads);
+  if (with_mask) {
+    Path notched;
+    notched.move_to(0.5, 0);
+    notched.line_to(image.width, 0);
+    notched.line_to(image.width, image.height);
+    notched.line_to(0, image.height);
+    notched.line_to(0, 0.5);
+    notched.close();
+    canvas.clip(notched, FillRule::NonZero);
+  }
+  Path aligned;
+  aligned.add_rect({6, 4, static_cast<double>(image.width - 9), static_cast<double>(image.height - 2)});
+  canvas.clip(aligned, FillRule::NonZero);
+  if (in_layer) canvas.begin_layer(1.f);
+  for (std::size_t i = 0; i < scene.paths.size(); ++i) {
+    canvas.set_transform(scene.transforms[i]);
+    canvas.set_fill_color(scene.colors[i]);
+    canvas.fill(scene.paths[i], scene.rules[i]);
+  }
+  if (in_layer) canvas.end_layer();
+}
+
+TEST(BlendCells, CanvasFillsAreThoseDrawnThroughAFullClipMask) {
+  for (std::uint32_t seed = 1; seed <= 4; ++seed) {
+    const int w = 120 + static_cast<int>(seed * 67 % 300), h = 80 + static_cast<int>(seed * 31 % 200);
+    const Scene scene = random_scene(seed + 200, w, h, 40);
+    for (const bool in_layer : {false, true}) {
+      for (const int threads : {1, 2}) {
+        Image fused = background(w, h, seed), masked = background(w, h, seed);
+        draw_on_canvas(scene, fused, false, in_layer, threads);
+        draw_on_canvas(scene, masked, true, in_layer, threads);
+        std::memcpy(&fused.data[0], &masked.data[0], 4);  // the notch
+        ASSERT_EQ(fused.data, masked.data) << "seed " << seed << (in_layer ? ", in a layer" : "") << ", " << threads
+                                           << " threads";
+      }
+    }
+  }
 }
 
 }  // namespace

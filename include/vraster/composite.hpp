@@ -89,6 +89,9 @@ class Compositor final : public CoverageSink {
   /// the compositor: their calls stay on one thread.)
   bool takes_concurrent_rows() const override;
   void expect(int y0, int y1, int x0, int x1) override;
+  /// 8-bit pixels under a solid paint, source-over, global alpha 1: the target view's pixels and the colour, so that
+  /// the rasterizer may blend runs straight from its cells (row() gives those runs the same pixels).
+  bool solid_over8(SolidOver8& target) const override;
 
   /// True when nothing the current draw call could do changes a pixel (invisible paint or zero alpha with a
   /// bounded operator): callers skip rasterization altogether.

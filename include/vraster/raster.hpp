@@ -69,11 +69,14 @@ struct CoverageRow {
 };
 
 /// Pixels a sink lets the rasterizer blend into itself (CoverageSink::solid_over8): one colour, source-over, onto 8-bit
-/// premultiplied RGBA rows. Row y starts at pixels + y * stride; `color` is premultiplied, R in the low byte.
+/// premultiplied RGBA rows. `pixels` is the pixel (x0, y0) of the sink's coordinates, rows are `stride` bytes apart,
+/// and the pixels cover [x0, x0 + width) x [y0, y0 + height); `color` is premultiplied, R in the low byte. The
+/// rasterizer blends into them only when they start at (0, 0) and cover the whole fill.
 struct SolidOver8 {
   std::uint8_t* pixels = nullptr;
   std::ptrdiff_t stride = 0;
   std::uint32_t color = 0;
+  int x0 = 0, y0 = 0, width = 0, height = 0;
 };
 
 /// The one interface between the rasterizer and whoever turns coverage into pixels.
@@ -104,7 +107,8 @@ class CoverageSink {
   /// pixels may start fetching them into the cache while the rasterizer accumulates the fill (the default ignores
   /// it). Only a hint: it changes no result.
   virtual void expect(int /*y0*/, int /*y1*/, int /*x0*/, int /*x1*/) {}
-  /// Whether the sink blends one colour source-over into 8-bit pixels (SolidCompositor): then it fills `target`, and
+  /// Whether the sink blends one colour source-over into 8-bit pixels (SolidCompositor, and Compositor with a solid
+  /// paint, source-over, global alpha 1 and no clip mask): then it fills `target`, and
   /// the rasterizer may blend some runs itself, in the pass that turns its cells into coverage (no coverage row in
   /// between), with exactly the pixels row() would give them. Other sinks (the default) get every run as row().
   virtual bool solid_over8(SolidOver8& /*target*/) const { return false; }

@@ -65,6 +65,18 @@ class ClipSink final : public CoverageSink {
   /// collect each row and flush the rows in between, which needs them in order.
   bool takes_concurrent_rows() const override { return !unbounded_ && out_.takes_concurrent_rows(); }
 
+  /// Without a clip mask, a bounded operator's pixels are the compositor's, moved to the region's corner.
+  bool solid_over8(SolidOver8& target) const override {
+    if (unbounded_ || mask_ || !out_.solid_over8(target)) return false;
+    if (region_.x0 < target.x0 || region_.y0 < target.y0 || region_.x1 > target.x0 + target.width ||
+        region_.y1 > target.y0 + target.height) {
+      return false;
+    }
+    target.pixels += (region_.y0 - target.y0) * target.stride + std::ptrdiff_t{region_.x0 - target.x0} * 4;
+    target = {target.pixels, target.stride, target.color, 0, 0, region_.width(), region_.height()};
+    return true;
+  }
+
   /// Unbounded operators: composites the rows not reached yet (with coverage 0 where nothing was drawn).
   void finish() {
     if (unbounded_) move_to_row(region_.height());

@@ -216,6 +216,22 @@ bool Compositor<T>::takes_concurrent_rows() const {
 }
 
 template <class T>
+bool Compositor<T>::solid_over8(SolidOver8& target) const {
+  const State& s = *state_;
+  if constexpr (sizeof(T) == 1) {
+    // row() is then over8_solid(coverage, scale 1, the colour), which the rasterizer's blend reproduces.
+    if (s.nothing || !s.solid_over || s.alpha < 1) return false;
+    std::uint32_t packed;
+    std::memcpy(&packed, s.shader.color(), 4);
+    if (packed >> 24 == 0) return false;
+    target = {s.view.pixels, s.view.stride, packed, s.view.x0, s.view.y0, s.view.width, s.view.height};
+    return true;
+  } else {
+    return false;
+  }
+}
+
+template <class T>
 bool Compositor<T>::draws_nothing() const {
   return state_->nothing;
 }

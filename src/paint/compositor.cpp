@@ -33,7 +33,8 @@ template <class T>
 bool SolidCompositor<T>::solid_over8(SolidOver8& target) const {
   if constexpr (sizeof(T) == 1) {
     if (premul_[3] == 0 || image_.width <= 0 || image_.height <= 0) return false;  // nothing to draw: row() returns
-    target = {image_.data.data(), static_cast<std::ptrdiff_t>(image_.width) * 4, packed8_};
+    target = {image_.data.data(), static_cast<std::ptrdiff_t>(image_.width) * 4, packed8_, 0, 0, image_.width,
+              image_.height};
     return true;
   } else {
     return false;

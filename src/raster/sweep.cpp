@@ -232,6 +232,13 @@ template <bool kRanges>
 // cluster, or the row's end) as one span of the sum left past the cluster (none in a hole). With a `target` (the
 // sink's SolidOver8; AVX2 only), the cluster is swept straight into its pixels instead (blend_cells_avx2), the cells
 // up to three past hi being untouched as for the narrow sweep.
+// The sink's pixels for resolve_cluster, where it offers them (CoverageSink::solid_over8) and they hold every pixel
+// of the fill: columns [0, width) and rows [0, y_end).
+inline const SolidOver8* solid_target(const CoverageSink& sink, SolidOver8& pixels, int width, int y_end) {
+  if (!sink.solid_over8(pixels)) return nullptr;
+  return pixels.x0 == 0 && pixels.y0 == 0 && pixels.width >= width && pixels.height >= y_end ? &pixels : nullptr;
+}
+
 template <FillRule R, bool kAvx2>
 [[gnu::always_inline]] inline void resolve_cluster(int y, int width, int x_base, int lo, int hi, int gap_end,
                                                    double* acc, float* cov, double& sum, const SolidOver8* target,
@@ -320,7 +327,7 @@ template <FillRule R, bool kAvx2>
   // Not the rows swept whole: their long runs were 3-5 % slower so (the coverage row's two tight loops against one
   // longer one).
   SolidOver8 pixels;
-  const SolidOver8* const target = kAvx2 && sink.solid_over8(pixels) ? &pixels : nullptr;
+  const SolidOver8* const target = kAvx2 ? solid_target(sink, pixels, width, y_to) : nullptr;
   // a.x[k]: where active edge k enters the current row (its x at max(y0, row top)). An edge that goes on below the
   // row leaves at x_at(bottom), which is the very number x_at(top) gives in the next row: it is kept instead of
   // computed twice. (Edges active from before y_from enter with x_at(y_from), the same number again.)
@@ -593,7 +600,7 @@ template <FillRule R, DenseRows kMode, bool kAvx2>
   // Every row blended straight into the sink's pixels where it allows (resolve_cluster): small shapes 5-10 % faster,
   // and no loss on wide rows here (docs/performance.md).
   SolidOver8 pixels;
-  const SolidOver8* const target = kAvx2 && sink.solid_over8(pixels) ? &pixels : nullptr;
+  const SolidOver8* const target = kAvx2 ? solid_target(sink, pixels, width, y_max) : nullptr;
   for (int r = 0; kMode != DenseRows::Whole && r < y_max - y_min; ++r) {
     notes[kNotes * r] = columns;
     notes[kNotes * r + 1] = -1;
