@@ -135,6 +135,16 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
     return;
   }
   if (width <= 0 || height <= 0) return;
+  if (queued_ == 0) {
+    // A fill of a few points in a small box, with nothing queued, is drawn at once whatever the frame holds (its
+    // work is below kMinWorkToStartQueue): known from a bound, and drawn as without threads.
+    const double bound = few_points_work_bound(lines);
+    if (bound < kMinWorkToStartQueue) {
+      drawn_at_once_ += bound;
+      fill(lines, rule, aa, width, height, sink);
+      return;
+    }
+  }
   if (queued_ == queue_.size()) queue_.emplace_back();
   QueuedFill& q = queue_[queued_];
   q.rule = rule;

@@ -98,6 +98,11 @@ double outline_cells(const std::vector<Edge>& edges);
 double band_work(const std::vector<Edge>& edges);
 /// band_work from its two sums: outline (summed |dy| + |dx|) and signed area.
 double work_of(double outline, double signed_area);
+/// A bound on band_work's estimate for an outline of at most kFewPoints points, from their box (each segment's
+/// outline is at most the box's width plus height, and the area it adds at most its height times the width); +inf
+/// for more points or points that are not finite.
+constexpr std::size_t kFewPoints = 16;
+double few_points_work_bound(const Polylines& lines);
 /// band_work's two sums taken over segments as they come (an outline before or while its edges are built).
 struct WorkSums {
   double outline = 0, signed_area = 0;

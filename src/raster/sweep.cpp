@@ -933,6 +933,21 @@ double detail::work_of(double outline, double signed_area) {
   return outline + std::abs(signed_area) / kAreaPerUnit;
 }
 
+double detail::few_points_work_bound(const Polylines& lines) {
+  const std::size_t n = lines.points.size();
+  if (n == 0 || n > kFewPoints) return std::numeric_limits<double>::infinity();
+  double x_lo = lines.points[0].x, x_hi = x_lo, y_lo = lines.points[0].y, y_hi = y_lo;
+  for (const Point& p : lines.points) {
+    x_lo = std::min(x_lo, p.x);
+    x_hi = std::max(x_hi, p.x);
+    y_lo = std::min(y_lo, p.y);
+    y_hi = std::max(y_hi, p.y);
+  }
+  const double w = x_hi - x_lo, outline = static_cast<double>(n) * (w + (y_hi - y_lo));
+  const double bound = work_of(outline, outline * w);
+  return std::isfinite(bound) ? bound : std::numeric_limits<double>::infinity();  // (NaN: not a bound)
+}
+
 double detail::band_work(const std::vector<Edge>& edges) {
   double signed_area = 0;
   for (const Edge& e : edges) signed_area += 0.5 * (e.x0 + e.x1) * (e.y1 - e.y0) * e.winding;
