@@ -221,17 +221,6 @@ template <bool kRanges>
 }
 #endif
 
-// A wide row whose pieces lie far apart (the two sides of a circle, the walls of a ring), as clusters: the pieces'
-// cell ranges (first cell << 32 | last cell) sorted, and merged where at most detail::kMergeGap cells lie between
-// them. Each cluster is swept from its first cell with the sum carried from the one before, in blocks of four with a
-// mask of its nonzero pixels where it is narrow, and is one compositor call; the stretch up to the next cluster has
-// that sum throughout, one span (none in a hole). No touched bits and no search for runs: about a third of the
-// row's time for discs and rings (docs/performance.md). Zeroes the clusters' cells.
-// One cluster of a sparse row: cells lo .. hi (relative to x_base; acc is cell x_base) swept from `sum` (carried
-// from the cluster before), one compositor call for its nonzero pixels, then the stretch up to gap_end (the next
-// cluster, or the row's end) as one span of the sum left past the cluster (none in a hole). With a `target` (the
-// sink's SolidOver8; AVX2 only), the cluster is swept straight into its pixels instead (blend_cells_avx2), the cells
-// up to three past hi being untouched as for the narrow sweep.
 // The sink's pixels for resolve_cluster, where it offers them (CoverageSink::solid_over8) and they hold every pixel
 // of the fill: columns [0, width) and rows [0, y_end).
 inline const SolidOver8* solid_target(const CoverageSink& sink, SolidOver8& pixels, int width, int y_end) {
@@ -239,6 +228,11 @@ inline const SolidOver8* solid_target(const CoverageSink& sink, SolidOver8& pixe
   return pixels.x0 == 0 && pixels.y0 == 0 && pixels.width >= width && pixels.height >= y_end ? &pixels : nullptr;
 }
 
+// One cluster of a row (of a sparse row, or a narrow row or a dense block's row whole): cells lo .. hi (relative to x_base; acc is cell x_base) swept from `sum` (carried
+// from the cluster before), one compositor call for its nonzero pixels, then the stretch up to gap_end (the next
+// cluster, or the row's end) as one span of the sum left past the cluster (none in a hole). With a `target` (the
+// sink's SolidOver8; AVX2 only), the cluster is swept straight into its pixels instead (blend_cells_avx2), the cells
+// up to three past hi being untouched as for the narrow sweep.
 template <FillRule R, bool kAvx2>
 [[gnu::always_inline]] inline void resolve_cluster(int y, int width, int x_base, int lo, int hi, int gap_end,
                                                    double* acc, float* cov, double& sum, const SolidOver8* target,
