@@ -261,7 +261,6 @@ class RasterizerImpl {
     ActiveEdges columns;                  // analytic sweep: the active edges as columns
     std::vector<Crossing> crossings;      // aliased sweep: active edges with their x at the sample row
     std::vector<double> accumulation;     // analytic sweep: one row of signed area deltas, width + 2 cells
-    std::vector<std::uint64_t> touched;   // analytic sweep: one bit per cell written in the current row
     std::vector<float> coverage;          // analytic sweep: coverage handed to the sink
     std::vector<CoverageRow> batch;       // analytic and queued dense sweeps: rows handed to the sink together
     std::vector<float> batch_coverage;    // analytic sweep: the narrow rows' coverage (queued dense: `coverage`)

@@ -25,8 +25,6 @@ namespace {
 
 using detail::accumulate_piece;
 using detail::coverage_of;
-using detail::mark_cells;
-using detail::resolve_row;
 using detail::with_rule;
 
 // The row loop (instantiated for AVX2 and for any x86-64 below, picked per fill; no FMA, so both give the same
@@ -67,9 +65,9 @@ class RowBatch {
   int count_ = 0;
 };
 
-// A row whose pieces lie within this many cells per active edge is swept as one run from its first touched cell to
-// its last (below), the untouched stretches between pieces included: one sweep and one compositor call instead of a
-// search for runs, a sweep, a span and a call per piece. So are crowded rows (a star with hundreds of crossings per
+// A row whose pieces lie within this many cells per active edge is swept whole, as one cluster from its first written
+// cell to its last (below), the untouched stretches between pieces included: one sweep and one compositor call
+// instead of a sweep, a span and a call per piece. So are crowded rows (a star with hundreds of crossings per
 // row) and the rows of self-intersecting polygons and curves (poly10_256 21 %, cubic_256 7 % faster; see
 // docs/performance.md); rows whose pieces lie farther apart (the two sides of a circle, the walls of a ring) are
 // swept as clusters of nearby pieces (resolve_clusters), their long untouched stretches constant spans. (32 before
@@ -81,7 +79,6 @@ struct RowBuffers {
   const std::vector<std::uint32_t>& active;  // the active list at the band's top (start_active)
   detail::ActiveEdges& columns;
   double* acc;
-  std::uint64_t* bits;
   float* cov;
   detail::RowBatchBuffers batch;  // the narrow rows waiting for the sink, kNarrowRowCoverage floats a row
 };
@@ -314,7 +311,6 @@ template <FillRule R, bool kAvx2>
   const int y_min = table.y_min;
   detail::ActiveEdges& a = b.columns;
   double* const acc = b.acc;
-  std::uint64_t* const bits = b.bits;
   float* const cov = b.cov;
   RowBatch batch(sink, b.batch, detail::kNarrowRowCoverage);  // the narrow rows
   // Narrow rows and sparse rows' clusters blended straight into the sink's pixels where it allows (resolve_cluster).
@@ -380,17 +376,15 @@ template <FillRule R, bool kAvx2>
         x_hi = std::max(x_hi, piece_last_cell(xa, xb));
       }
     }
-    // A wide row's touched cells are marked now, while the columns still hold the row's pieces: a sparse row's
-    // pieces as ranges of cells (already noted by the split in rows of few edges; otherwise from the pieces again,
-    // rather than noted piece by piece in every row: most rows of many edges are narrow or crowded and need none). A
-    // row with pieces close together is marked touched all at once from x_lo to x_hi and swept in one run. Both
-    // tests depend on the row's own edges only, so a band or a queued fill decides every row as a whole sweep does.
+    // A sparse wide row's pieces are noted now as ranges of cells, while the columns still hold them (already noted
+    // by the split in rows of few edges; otherwise from the pieces again, rather than noted piece by piece in every
+    // row: most rows of many edges are narrow or crowded and need none). A row with pieces close together is swept
+    // whole from x_lo to x_hi, as one cluster. Both tests depend on the row's own edges only, so a band or a queued
+    // fill decides every row as a whole sweep does.
     const bool narrow = x_hi - x_lo < detail::kNarrowRowCells;
     const bool whole = static_cast<std::size_t>(x_hi - x_lo) <= kWholeRunCellsPerEdge * n;
-    if (x_lo <= x_hi && !narrow) {
-      if (whole) {
-        mark_cells(bits, x_lo, x_hi);
-      } else if (!ranged) {
+    if (x_lo <= x_hi && !narrow && !whole) {
+      if (!ranged) {
         std::uint64_t* const ranges = a.ranges.data();
         for (std::size_t k = 0; k < n; ++k) {
           if (hs[k] == 0) continue;
@@ -420,8 +414,9 @@ template <FillRule R, bool kAvx2>
     if (x_lo > x_hi) continue;
     if (!narrow) {
       batch.hand_over();
-      if (whole) {
-        resolve_row<R, kAvx2>(y, width, x_lo, x_hi, acc, bits, cov, sink);
+      if (whole) {  // one cluster, with its coverage row (blending these long runs from the cells was slower)
+        double sum = 0;
+        resolve_cluster<R, kAvx2>(y, width, 0, x_lo, x_hi, width, acc, cov, sum, nullptr, sink);
       } else {
         resolve_clusters<R, kAvx2>(y, width, a.ranges.data(), clusters, acc, cov, target, sink);
       }
@@ -1007,16 +1002,14 @@ void detail::RasterizerImpl::sweep_analytic(FillRule rule, int width, CoverageSi
 void detail::RasterizerImpl::sweep_analytic_band(const EdgeTableView& table, FillRule rule, int width, int y_from,
                                                  int y_to, BandScratch& s, CoverageSink& sink) {
   const std::size_t cells = static_cast<std::size_t>(width) + 2;  // a piece writes up to cell width + 1
-  const std::size_t padded = cells + detail::kRowPadding;  // resolve_row's short-run block reads past, pieces write
+  const std::size_t padded = cells + detail::kRowPadding;  // a narrow cluster's last block reads past, pieces write
   static_assert(detail::kRowPadding >= detail::kPieceSlack - 1);
   if (s.accumulation.size() < padded) s.accumulation.assign(padded, 0.0);
-  if (s.touched.size() < cells / 64 + 1) s.touched.assign(cells / 64 + 1, 0);
   if (s.coverage.size() < padded) s.coverage.resize(padded);
   // An edge whose bottom is at or above the band's top was retired before it (e.y1 > bottom keeps an edge).
   start_active(table, y_from, y_from, s.active);
-  const RowBuffers buffers{s.active,          s.columns,         s.accumulation.data(), s.touched.data(),
-                           s.coverage.data(), row_batch_buffers(s.batch, s.batch_coverage, kBatchRows,
-                                                                 detail::kNarrowRowCoverage)};
+  const RowBuffers buffers{s.active, s.columns, s.accumulation.data(), s.coverage.data(),
+                           row_batch_buffers(s.batch, s.batch_coverage, kBatchRows, detail::kNarrowRowCoverage)};
   with_rule(rule, [&](auto r) {
     constexpr FillRule R = decltype(r)::value;
 #ifdef VRASTER_HAVE_AVX2_KERNELS
