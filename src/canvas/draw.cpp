@@ -72,8 +72,9 @@ class ClipSink final : public CoverageSink {
         region_.y1 > target.y0 + target.height) {
       return false;
     }
-    target.pixels += (region_.y0 - target.y0) * target.stride + std::ptrdiff_t{region_.x0 - target.x0} * 4;
-    target = {target.pixels, target.stride, target.color, 0, 0, region_.width(), region_.height()};
+    std::uint8_t* const corner =
+        target.pixels + (region_.y0 - target.y0) * target.stride + std::ptrdiff_t{region_.x0 - target.x0} * 4;
+    target = {corner, target.stride, target.color, 0, 0, region_.width(), region_.height()};
     return true;
   }
 

@@ -225,11 +225,11 @@ inline const SolidOver8* solid_target(const CoverageSink& sink, SolidOver8& pixe
   return pixels.x0 == 0 && pixels.y0 == 0 && pixels.width >= width && pixels.height >= y_end ? &pixels : nullptr;
 }
 
-// One cluster of a row (of a sparse row, or a narrow row or a dense block's row whole): cells lo .. hi (relative to x_base; acc is cell x_base) swept from `sum` (carried
-// from the cluster before), one compositor call for its nonzero pixels, then the stretch up to gap_end (the next
-// cluster, or the row's end) as one span of the sum left past the cluster (none in a hole). With a `target` (the
-// sink's SolidOver8; AVX2 only), the cluster is swept straight into its pixels instead (blend_cells_avx2), the cells
-// up to three past hi being untouched as for the narrow sweep.
+// One cluster of a row (a sparse row's, or a narrow, crowded or dense block's row whole): cells lo .. hi (relative to
+// x_base; acc is cell x_base) swept from `sum` (carried from the cluster before), one compositor call for its nonzero
+// pixels, then the stretch up to gap_end (the next cluster, or the row's end) as one span of the sum left past the
+// cluster (none in a hole). With a `target` (the sink's SolidOver8; AVX2 only), the cluster is swept straight into
+// its pixels instead (blend_cells_avx2), the cells up to three past hi being untouched as for the narrow sweep.
 template <FillRule R, bool kAvx2>
 [[gnu::always_inline]] inline void resolve_cluster(int y, int width, int x_base, int lo, int hi, int gap_end,
                                                    double* acc, float* cov, double& sum, const SolidOver8* target,
@@ -925,14 +925,9 @@ double detail::work_of(double outline, double signed_area) {
 double detail::few_points_work_bound(const Polylines& lines) {
   const std::size_t n = lines.points.size();
   if (n == 0 || n > kFewPoints) return std::numeric_limits<double>::infinity();
-  double x_lo = lines.points[0].x, x_hi = x_lo, y_lo = lines.points[0].y, y_hi = y_lo;
-  for (const Point& p : lines.points) {
-    x_lo = std::min(x_lo, p.x);
-    x_hi = std::max(x_hi, p.x);
-    y_lo = std::min(y_lo, p.y);
-    y_hi = std::max(y_hi, p.y);
-  }
-  const double w = x_hi - x_lo, outline = static_cast<double>(n) * (w + (y_hi - y_lo));
+  Rect box = Rect::from_point(lines.points[0]);
+  for (const Point& p : lines.points) box.include(p);
+  const double w = box.width(), outline = static_cast<double>(n) * (w + box.height());
   const double bound = work_of(outline, outline * w);
   return std::isfinite(bound) ? bound : std::numeric_limits<double>::infinity();  // (NaN: not a bound)
 }
