@@ -5,6 +5,7 @@
 
 #include <random>
 
+#include "raster/fixed_cells.hpp"
 #include "raster/rasterizer_p.hpp"
 #include "support/capture.hpp"
 #include "support/exact_reference.hpp"
@@ -12,10 +13,14 @@
 namespace vraster::test {
 namespace {
 
-CoverageGrid fill_with(const Polylines& lines, FillRule rule, int w, int h, std::int64_t dense_limit) {
+// dense_limit 0: the row sweep; fixed_cells false: its rows all in double cells (the fixed-point ones are within
+// detail::kFixedCellsError of them).
+CoverageGrid fill_with(const Polylines& lines, FillRule rule, int w, int h, std::int64_t dense_limit,
+                       bool fixed_cells = true) {
   CoverageGrid grid(w, h);
   Rasterizer r;
   r.set_dense_limit(dense_limit);
+  r.set_fixed_cells(fixed_cells);
   r.fill(lines, rule, AntiAlias::Analytic, w, h, grid);
   EXPECT_TRUE(grid.violations().empty()) << grid.violations().front();
   return grid;
@@ -141,13 +146,17 @@ TEST(DenseSweep, ThinShapesInStripsMatchTheExactReference) {
     const std::vector<Polygon> shape{it % 2 == 0 ? Polygon{a, b, c} : Polygon{c, b, a}};
     const Polylines lines = exact::polylines_of(shape);
     const std::vector<double> want = exact::trapezoid_coverage(shape, FillRule::NonZero, side, side);
-    for (const std::int64_t limit : {Rasterizer::kDefaultDenseLimit, std::int64_t{0}}) {
-      const CoverageGrid got = fill_with(lines, FillRule::NonZero, side, side, limit);
+    // The dense sweep, the row sweep in double cells (both to 1e-9), the row sweep with fixed-point rows.
+    for (const auto& [limit, fixed] : {std::pair{Rasterizer::kDefaultDenseLimit, false},
+                                       std::pair{std::int64_t{0}, false}, std::pair{std::int64_t{0}, true}}) {
+      const CoverageGrid got = fill_with(lines, FillRule::NonZero, side, side, limit, fixed);
       std::vector<double> values(static_cast<std::size_t>(side) * side);
       for (int y = 0; y < side; ++y) {
         for (int x = 0; x < side; ++x) values[static_cast<std::size_t>(y) * side + x] = got.at(x, y);
       }
-      ASSERT_TRUE(exact::grids_near(values, want, side, 1e-9)) << "sliver " << it << ", dense limit " << limit;
+      const double tolerance = 1e-9 + (fixed ? detail::kFixedCellsError : 0.0);
+      ASSERT_TRUE(exact::grids_near(values, want, side, tolerance))
+          << "sliver " << it << ", dense limit " << limit << ", fixed cells " << fixed;
     }
   }
 }
@@ -196,9 +205,17 @@ TEST(DenseSweep, ConvexShapesWithTheirRowsPiecesNotedMatchTheExactReference) {
       ++ranged;
     }
     const std::vector<double> want = exact::trapezoid_coverage(shape, FillRule::NonZero, w, h);
-    const CoverageGrid rows = fill_with(lines, FillRule::NonZero, w, h, 0);
+    const CoverageGrid rows = fill_with(lines, FillRule::NonZero, w, h, 0, false);
+    const CoverageGrid fixed_rows = fill_with(lines, FillRule::NonZero, w, h, 0, true);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        ASSERT_NEAR(fixed_rows.at(x, y), rows.at(x, y), detail::kFixedCellsError)
+            << "shape " << it << " pixel " << x << "," << y;
+      }
+    }
     for (const FillRule rule : {FillRule::NonZero, FillRule::EvenOdd}) {
-      const CoverageGrid got = fill_with(lines, rule, w, h, Rasterizer::kDefaultDenseLimit);
+      // (rows the default limit still leaves to the row sweep in double cells, as `rows`)
+      const CoverageGrid got = fill_with(lines, rule, w, h, Rasterizer::kDefaultDenseLimit, false);
       std::vector<double> values(static_cast<std::size_t>(w) * h);
       for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {

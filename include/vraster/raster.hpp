@@ -182,6 +182,9 @@ class Rasterizer {
   /// sweep: the rows inside it reach the sink as one full-coverage span each, only its border pixels as rows, with
   /// the coverage the sweep gives (the same arithmetic). false sends rectangles through the sweep (tests compare).
   void set_rect_shortcut(bool on);
+  /// The analytic row sweep keeps the rows of at most 31 active edges in fixed-point cells (2^-26 of a pixel, under
+  /// 1e-6 from the double cells; docs/design.md). false keeps every row in doubles (tests compare).
+  void set_fixed_cells(bool on);
 
   /// Work budget of AntiAlias::Exact (and of NonExterior, which resolves the same arrangement): a fill whose
   /// edges cross more than this many times inside pixel rows is drawn with AntiAlias::Analytic instead (and

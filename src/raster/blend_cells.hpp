@@ -9,6 +9,7 @@
 
 #include "raster/cells.hpp"
 #include "raster/cpu.hpp"
+#include "raster/fixed_cells.hpp"
 
 #ifdef VRASTER_HAVE_AVX2_KERNELS
 #include "paint/over8_avx2.hpp"
@@ -48,6 +49,32 @@ template <FillRule R>
     }
   }
   sum = _mm_cvtsd_f64(_mm256_castpd256_pd128(carry));
+}
+
+/// blend_cells_avx2 for fixed-point cells (fixed_cells.hpp), eight a step: the same pixels as
+/// sweep_fixed_cells_avx2's coverage handed to SolidCompositor::row. Reads and zeroes cells up to seven past count
+/// (which must be zero).
+template <FillRule R>
+[[gnu::target("avx2")]] inline void blend_fixed_cells_avx2(std::int32_t* cells, int count, int pixels,
+                                                           std::int32_t& sum, std::uint32_t* px, std::uint32_t color) {
+  namespace a2 = avx2;
+  const __m256i c16 = _mm256_unpacklo_epi8(_mm256_set1_epi32(static_cast<int>(color)), _mm256_setzero_si256());
+  __m256i carry = _mm256_set1_epi32(sum);
+  for (int i = 0; i < count; i += kFixedBlock) {
+    const __m256 coverage = sweep_fixed_block_avx2<R>(cells + i, carry);
+    const int n = std::min(kFixedBlock, pixels - i);
+    if (n <= 0) continue;  // cells right of the image: swept for the sum only
+    const __m256i k = a2::quantize8x8(coverage, _mm256_set1_ps(1.f));
+    std::uint32_t* const p = px + i;
+    if (n == kFixedBlock) {
+      auto* q = reinterpret_cast<__m256i*>(p);
+      _mm256_storeu_si256(q, a2::over_coverage8(_mm256_loadu_si256(q), c16, k));
+    } else {
+      const __m256i d = _mm256_maskload_epi32(reinterpret_cast<const int*>(p), a2::first_lanes(n));
+      a2::store_first(p, a2::over_coverage8(d, c16, k), n);
+    }
+  }
+  sum = _mm256_cvtsi256_si32(carry);
 }
 
 }  // namespace vraster::detail

@@ -336,21 +336,40 @@ struct Split4 {
   return p;
 }
 
-// A split's four lanes in memory, with the pieces' ends and heights, to add the pieces one at a time.
+// Four shares in fixed-point cells' units (fixed_cells.hpp's kFixedUnit), rounded to nearest as to_fixed rounds.
+[[gnu::target("avx2"), gnu::always_inline]] inline __m128i fixed_units(__m256d v) {
+  return _mm256_cvtpd_epi32(_mm256_mul_pd(v, _mm256_set1_pd(0x1p26)));
+}
+
+// A split's four lanes in memory, with the pieces' ends and heights, to add the pieces one at a time. kFixed: the
+// shares in fixed-point cells' units (fixed_cells.hpp: each cell gets the difference of the rounded running totals)
+// instead of kept as doubles.
+template <bool kFixed = false>
 struct SplitLanes {
   alignas(32) double xa[4], xb[4], h[4], add0[4], add1[4], then1[4], add2[4], then2[4], add3[4];
-  alignas(16) std::int32_t first[4], past[4];
+  alignas(16) std::int32_t first[4], past[4], fixed[4][4];
   [[gnu::target("avx2"), gnu::always_inline]] SplitLanes(__m256d from_x, __m256d to_x, __m256d height) {
     const Split4 p = split4(from_x, to_x, height);
     _mm256_store_pd(xa, from_x);
     _mm256_store_pd(xb, to_x);
     _mm256_store_pd(h, height);
-    _mm256_store_pd(add0, p.add0);
-    _mm256_store_pd(add1, p.add1);
-    _mm256_store_pd(then1, p.then1);
-    _mm256_store_pd(add2, p.add2);
-    _mm256_store_pd(then2, p.then2);
-    _mm256_store_pd(add3, p.add3);
+    if constexpr (kFixed) {
+      // The shares' running totals rounded (accumulate_split_fixed's sums, in its order), then their differences.
+      const __m256d c0 = p.add0, c1 = _mm256_add_pd(_mm256_add_pd(c0, p.add1), p.then1);
+      const __m256d c2 = _mm256_add_pd(_mm256_add_pd(c1, p.add2), p.then2), c3 = _mm256_add_pd(c2, p.add3);
+      const __m128i q0 = fixed_units(c0), q1 = fixed_units(c1), q2 = fixed_units(c2), q3 = fixed_units(c3);
+      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[0]), q0);
+      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[1]), _mm_sub_epi32(q1, q0));
+      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[2]), _mm_sub_epi32(q2, q1));
+      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[3]), _mm_sub_epi32(q3, q2));
+    } else {
+      _mm256_store_pd(add0, p.add0);
+      _mm256_store_pd(add1, p.add1);
+      _mm256_store_pd(then1, p.then1);
+      _mm256_store_pd(add2, p.add2);
+      _mm256_store_pd(then2, p.then2);
+      _mm256_store_pd(add3, p.add3);
+    }
     _mm_store_si128(reinterpret_cast<__m128i*>(first), p.first);
     _mm_store_si128(reinterpret_cast<__m128i*>(past), p.past);
   }

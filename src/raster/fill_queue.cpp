@@ -262,7 +262,7 @@ void RasterizerImpl::run_queued_band(int band, BandScratch& s) {
     const int y0 = std::max(y_from, q.y_min), y1 = std::min(y_to, q.y_max);
     switch (q.kind) {
       case QueuedFill::Kind::Analytic:
-        sweep_analytic_band(q.table(), q.rule, q.width, y0, y1, s, *q.sink);
+        sweep_analytic_band(q.table(), q.rule, q.width, y0, y1, fixed_cells_, s, *q.sink);
         break;
       case QueuedFill::Kind::Aliased:
         sweep_aliased_rows(q.table(), q.rule, q.width, y0, y1, s, *q.sink);

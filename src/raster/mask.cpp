@@ -8,8 +8,8 @@
 #include <cstring>
 #include <type_traits>
 
-// SSE2 is part of x86-64; other targets (or -DVRASTER_MASK_SCALAR, which the tests use to check it) take the
-// portable scalar row pass (-DVRASTER_MASK_SCALAR forces it, to test it on x86-64).
+// SSE2 is part of x86-64; other targets take the portable scalar row pass (-DVRASTER_MASK_SCALAR forces it, to
+// check it by hand on x86-64: no test build sets it).
 #if (defined(__SSE2__) || defined(_M_X64)) && !defined(VRASTER_MASK_SCALAR)
 #include <emmintrin.h>
 #define VRASTER_MASK_SSE2 1

@@ -218,6 +218,7 @@ class RasterizerImpl {
   std::int64_t dense_limit_ = Rasterizer::kDefaultDenseLimit;
   bool exact_shortcut_ = true;
   bool rect_shortcut_ = true;
+  bool fixed_cells_ = true;
   std::uint64_t exact_fallbacks_ = 0;  // exact fills over the crossing budget, drawn analytic instead
 
   /// Up to `threads` threads sweep the bands of one fill (1: no pool).
@@ -261,6 +262,7 @@ class RasterizerImpl {
     ActiveEdges columns;                  // analytic sweep: the active edges as columns
     std::vector<Crossing> crossings;      // aliased sweep: active edges with their x at the sample row
     std::vector<double> accumulation;     // analytic sweep: one row of signed area deltas, width + 2 cells
+    std::vector<std::int32_t> fixed_cells;  // analytic sweep: the same in fixed point, for rows of few edges
     std::vector<float> coverage;          // analytic sweep: coverage handed to the sink
     std::vector<CoverageRow> batch;       // analytic and queued dense sweeps: rows handed to the sink together
     std::vector<float> batch_coverage;    // analytic sweep: the narrow rows' coverage (queued dense: `coverage`)
@@ -283,9 +285,11 @@ class RasterizerImpl {
   /// Rows [y_from, y_to) of an aliased (bucketed by sample row) / analytic (bucketed by row) table, on one thread.
   static void sweep_aliased_rows(const EdgeTableView& table, FillRule rule, int width, int y_from, int y_to,
                                  BandScratch& s, CoverageSink& sink);
+  /// fixed_cells: rows of few edges in fixed point (fixed_cells_, passed on to the queue's bands too).
   static void sweep_analytic_band(const EdgeTableView& table, FillRule rule, int width, int y_from, int y_to,
-                                  BandScratch& s, CoverageSink& sink);
-  void sweep_analytic(FillRule rule, int width, CoverageSink& sink);
+                                  bool fixed_cells, BandScratch& s, CoverageSink& sink);
+  /// fixed_cells: the row sweep's rows of few edges in fixed point (analytic mode, unless turned off).
+  void sweep_analytic(FillRule rule, int width, bool fixed_cells, CoverageSink& sink);
   void sweep_sampled(FillRule rule, AntiAlias aa, int width, CoverageSink& sink);
   bool sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink);
   [[gnu::noinline]] void sweep_ranged(FillRule rule, int width, int x_base, int columns, CoverageSink& sink);

@@ -15,6 +15,7 @@
 #include "raster/blend_cells.hpp"
 #include "raster/boundary.hpp"
 #include "raster/cells.hpp"
+#include "raster/fixed_cells.hpp"
 #include "raster/supersample.hpp"
 #include "raster/unit_winding.hpp"
 #include "raster/rasterizer_p.hpp"
@@ -79,6 +80,7 @@ struct RowBuffers {
   const std::vector<std::uint32_t>& active;  // the active list at the band's top (start_active)
   detail::ActiveEdges& columns;
   double* acc;
+  std::int32_t* fixed;  // the fixed-point cells of rows of few edges (fixed_cells.hpp); null: doubles for every row
   float* cov;
   detail::RowBatchBuffers batch;  // the narrow rows waiting for the sink, kNarrowRowCoverage floats a row
 };
@@ -190,23 +192,35 @@ inline int piece_last_cell(double xa, double xb) { return static_cast<int>(std::
 }
 
 // The row's pieces, four active edges a step: split without branches (detail::SplitLanes), then added in the list's
-// order, so each cell gets accumulate_piece's numbers in the scalar loop's order. Also the row's first and last
-// touched cells (piece_first_cell, piece_last_cell); pieces of height 0 are left out, as there. kRanges: also each
-// piece's range of cells for resolve_clusters (first << 32 | last, from the split's numbers: piece_first_cell's and
-// piece_last_cell's), a store a piece instead of a second pass over the pieces if the row turns out sparse; for rows
-// of few edges, which are the sparse ones (crowded rows are swept whole and would only pay the stores). Returns the
-// number of ranges.
-template <bool kRanges>
-[[gnu::target("avx2")]] inline std::size_t add_pieces_avx2(const detail::ActiveEdges& a, double* acc, int& x_lo,
+// order, so each cell gets accumulate_piece's numbers in the scalar loop's order (into fixed-point cells, Cell
+// std::int32_t: accumulate_piece_fixed's integers, the shares rounded four pieces at a time). Also the row's first
+// and last touched cells (piece_first_cell, piece_last_cell); pieces of height 0 are left out, as there. kRanges:
+// also each piece's range of cells for resolve_clusters (first << 32 | last, from the split's numbers:
+// piece_first_cell's and piece_last_cell's), a store a piece instead of a second pass over the pieces if the row
+// turns out sparse; for rows of few edges, which are the sparse ones (crowded rows are swept whole and would only pay
+// the stores). Returns the number of ranges.
+template <bool kRanges, class Cell>
+[[gnu::target("avx2")]] inline std::size_t add_pieces_avx2(const detail::ActiveEdges& a, Cell* acc, int& x_lo,
                                                           int& x_hi, std::uint64_t* ranges) {
+  constexpr bool kFixed = std::is_same_v<Cell, std::int32_t>;
   std::size_t count = 0;
   for (std::size_t k = 0; k < a.size; k += 4) {
-    const detail::SplitLanes split(_mm256_loadu_pd(&a.x[k]), _mm256_loadu_pd(&a.xb[k]), _mm256_loadu_pd(&a.h[k]));
+    const detail::SplitLanes<kFixed> split(_mm256_loadu_pd(&a.x[k]), _mm256_loadu_pd(&a.xb[k]),
+                                           _mm256_loadu_pd(&a.h[k]));
     const int lanes = static_cast<int>(std::min<std::size_t>(4, a.size - k));  // the last step may pass the list
     for (int i = 0; i < lanes; ++i) {
       if (split.h[i] == 0) continue;
-      split.add(i, acc);
       const int first = split.first[i], last = split.first[i] + split.past[i] + 1;
+      if constexpr (kFixed) {
+        if (split.past[i] > 2) {
+          detail::accumulate_long_piece_fixed(acc, std::min(split.xa[i], split.xb[i]),
+                                              std::max(split.xa[i], split.xb[i]), split.h[i], first, last - 1);
+        } else {
+          for (int c = 0; c < 4; ++c) acc[first + c] += split.fixed[c][i];
+        }
+      } else {
+        split.add(i, acc);
+      }
       x_lo = std::min(x_lo, first);
       x_hi = std::max(x_hi, last);
       if constexpr (kRanges) {
@@ -271,21 +285,17 @@ template <FillRule R, bool kAvx2>
 
 // A wide row whose pieces lie far apart (the two sides of a circle, the walls of a ring), as clusters: the pieces'
 // cell ranges (first cell << 32 | last cell) sorted, and merged where at most detail::kMergeGap cells lie between
-// them. Each cluster is swept from its first cell with the sum carried from the one before, in blocks of four with a
-// mask of its nonzero pixels where it is narrow, and is one compositor call; the stretch up to the next cluster has
-// that sum throughout, one span (none in a hole). No touched bits and no search for runs: about a third of the
-// row's time for discs and rings (docs/performance.md). Zeroes the clusters' cells.
-template <FillRule R, bool kAvx2>
-[[gnu::always_inline]] inline void resolve_clusters(int y, int width, std::uint64_t* ranges, std::size_t count,
-                                                    double* acc, float* cov, const SolidOver8* target,
-                                                    CoverageSink& sink) {
+// them; cluster(lo, hi, gap_end) for each, gap_end being where the next one starts (or the row's end). No touched
+// bits and no search for runs: about a third of the row's time for discs and rings (docs/performance.md).
+template <class Cluster>
+[[gnu::always_inline]] inline void for_each_cluster(int width, std::uint64_t* ranges, std::size_t count,
+                                                    Cluster&& cluster) {
   for (std::size_t i = 1; i < count; ++i) {  // a few pieces, mostly in order already
     const std::uint64_t v = ranges[i];
     std::size_t j = i;
     for (; j > 0 && ranges[j - 1] > v; --j) ranges[j] = ranges[j - 1];
     ranges[j] = v;
   }
-  double sum = 0;
   std::size_t i = 0;
   while (i < count) {
     const int lo = static_cast<int>(ranges[i] >> 32);
@@ -294,9 +304,87 @@ template <FillRule R, bool kAvx2>
       hi = std::max(hi, static_cast<int>(ranges[i] & 0xFFFFFFFFu));
     }
     // Up to the next cluster (past the last one, to the row's end: edges right of the image were dropped).
-    const int gap_end = std::min(i < count ? static_cast<int>(ranges[i] >> 32) : width, width);
-    resolve_cluster<R, kAvx2>(y, width, 0, lo, hi, gap_end, acc, cov, sum, target, sink);
+    cluster(lo, hi, std::min(i < count ? static_cast<int>(ranges[i] >> 32) : width, width));
   }
+}
+
+// Each cluster swept from its first cell with the sum carried from the one before, in blocks of four with a mask of
+// its nonzero pixels where it is narrow, and one compositor call; the stretch up to the next cluster has that sum
+// throughout, one span (none in a hole). Zeroes the clusters' cells.
+template <FillRule R, bool kAvx2>
+[[gnu::always_inline]] inline void resolve_clusters(int y, int width, std::uint64_t* ranges, std::size_t count,
+                                                    double* acc, float* cov, const SolidOver8* target,
+                                                    CoverageSink& sink) {
+  double sum = 0;
+  for_each_cluster(width, ranges, count, [&](int lo, int hi, int gap_end) {
+    resolve_cluster<R, kAvx2>(y, width, 0, lo, hi, gap_end, acc, cov, sum, target, sink);
+  });
+}
+
+// resolve_cluster for fixed-point cells (fixed_cells.hpp): cells lo .. hi swept from `sum` (blocks of eight, which
+// read up to seven cells past hi: untouched, zero), blended straight into the target's pixels where there is one,
+// else one compositor call for the nonzero pixels; then the stretch up to gap_end as one span.
+template <FillRule R, bool kAvx2>
+[[gnu::always_inline]] inline void resolve_fixed_cluster(int y, int width, int lo, int hi, int gap_end,
+                                                         std::int32_t* cells, float* cov, std::int32_t& sum,
+                                                         const SolidOver8* target, CoverageSink& sink) {
+  const int visible = std::max(std::min(hi + 1, width) - lo, 0);
+  bool blended = false;
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  if constexpr (kAvx2) {
+    if (target) {
+      auto* const px = reinterpret_cast<std::uint32_t*>(target->pixels + y * target->stride) + lo;
+      detail::blend_fixed_cells_avx2<R>(cells + lo, hi - lo + 1, visible, sum, px, target->color);
+      blended = true;
+    }
+  }
+#endif
+  if (!blended) {
+    detail::sweep_fixed_cells<R, kAvx2>(cells + lo, cov, hi - lo + 1, sum);
+    int a = 0, b = visible;
+    detail::trim_zeros(cov, a, b);
+    if (b - a == 1) {
+      sink.span(y, lo + a, lo + b, cov[a]);
+    } else if (b > a) {
+      sink.row(y, lo + a, lo + b, cov + a);
+    }
+  }
+  if (gap_end > hi + 1) {
+    const float c = detail::fixed_coverage<R>(sum);
+    if (c > 0) sink.span(y, hi + 1, gap_end, c);
+  }
+}
+
+// A row in fixed-point cells, once its pieces are added: the choices of the double cells' row (below) with the
+// integer sweeps. Narrow rows without the sink's pixels go in the batch, as there; crowded ("whole") rows keep their
+// coverage row (blending their long runs from the cells was no faster in fixed point either).
+template <FillRule R, bool kAvx2>
+[[gnu::always_inline]] inline void resolve_fixed_row(int y, int width, int x_lo, int x_hi, bool narrow, bool whole,
+                                                     std::uint64_t* ranges, std::size_t clusters,
+                                                     std::int32_t* fixed, float* cov, RowBatch& batch,
+                                                     const SolidOver8* target, CoverageSink& sink) {
+  std::int32_t sum = 0;
+  if (narrow && !target) {
+    float* const row_coverage = batch.slot();  // kNarrowRowCoverage floats: blocks of eight up to x_hi
+    detail::sweep_fixed_cells<R, kAvx2>(fixed + x_lo, row_coverage, x_hi - x_lo + 1, sum);
+    int from = 0, to = std::max(std::min(x_hi + 1, width) - x_lo, 0);
+    detail::trim_zeros(row_coverage, from, to);
+    if (to > from) batch.add(y, x_lo + from, x_lo + to, row_coverage + from);
+    const float right = detail::fixed_coverage<R>(sum);
+    if (right > 0 && x_hi + 1 < width) {
+      batch.hand_over();
+      sink.span(y, x_hi + 1, width, right);
+    }
+    return;
+  }
+  batch.hand_over();
+  if (narrow || whole) {
+    resolve_fixed_cluster<R, kAvx2>(y, width, x_lo, x_hi, width, fixed, cov, sum, narrow ? target : nullptr, sink);
+    return;
+  }
+  for_each_cluster(width, ranges, clusters, [&](int lo, int hi, int gap_end) {
+    resolve_fixed_cluster<R, kAvx2>(y, width, lo, hi, gap_end, fixed, cov, sum, target, sink);
+  });
 }
 
 // Rows of up to this many active edges note their pieces' ranges as they add them (add_pieces_avx2).
@@ -355,11 +443,21 @@ template <FillRule R, bool kAvx2>
     const double* const hs = a.h.data();
     std::size_t clusters = 0;  // pieces of a sparse wide row, for resolve_clusters
     bool ranged = false;       // whether the pieces' ranges were noted as they were added
+    // Rows of few edges in fixed point, the others in doubles (fixed_cells.hpp): a choice from the row's own edges,
+    // so bands and queued fills make it as a whole sweep does.
+    std::int32_t* const fixed = n <= detail::kFixedRowEdges ? b.fixed : nullptr;
 #ifdef VRASTER_HAVE_AVX2_KERNELS
     if constexpr (kAvx2) {
       // No branch on how many cells a piece touches (mispredicted for short edges and, less often, for long ones;
       // stars 6-8 % faster without it).
-      if (n <= kRangedRowEdges) {
+      if (fixed) {
+        if (n <= kRangedRowEdges) {
+          clusters = add_pieces_avx2<true>(a, fixed, x_lo, x_hi, a.ranges.data());
+          ranged = true;
+        } else {
+          add_pieces_avx2<false>(a, fixed, x_lo, x_hi, nullptr);
+        }
+      } else if (n <= kRangedRowEdges) {
         clusters = add_pieces_avx2<true>(a, acc, x_lo, x_hi, a.ranges.data());
         ranged = true;
       } else {
@@ -371,7 +469,11 @@ template <FillRule R, bool kAvx2>
       for (std::size_t k = 0; k < n; ++k) {
         if (hs[k] == 0) continue;
         const double xa = xs[k], xb = xbs[k];
-        accumulate_piece(acc, xa, xb, hs[k]);
+        if (fixed) {
+          detail::accumulate_piece_fixed(fixed, xa, xb, hs[k]);
+        } else {
+          accumulate_piece(acc, xa, xb, hs[k]);
+        }
         x_lo = std::min(x_lo, piece_first_cell(xa, xb));
         x_hi = std::max(x_hi, piece_last_cell(xa, xb));
       }
@@ -412,6 +514,11 @@ template <FillRule R, bool kAvx2>
       a.size = kept;
     }
     if (x_lo > x_hi) continue;
+    if (fixed) {
+      resolve_fixed_row<R, kAvx2>(y, width, x_lo, x_hi, narrow, whole, a.ranges.data(), clusters, fixed, cov, batch,
+                                  target, sink);
+      continue;
+    }
     if (!narrow) {
       batch.hand_over();
       if (whole) {  // one cluster, with its coverage row (blending these long runs from the cells was slower)
@@ -984,26 +1091,30 @@ void detail::RasterizerImpl::set_threads(int threads) {
   bands_.resize(static_cast<std::size_t>(threads));
 }
 
-void detail::RasterizerImpl::sweep_analytic(FillRule rule, int width, CoverageSink& sink) {
+void detail::RasterizerImpl::sweep_analytic(FillRule rule, int width, bool fixed_cells, CoverageSink& sink) {
   int x_base = 0, columns = 0;
   edge_columns(edges_, x_base, columns);
   if (sweep_dense(rule, width, x_base, columns, sink)) return;
   bucket_edges(false);
   in_bands(band_count(sink), [&](int y0, int y1, BandScratch& s) {
-    sweep_analytic_band(table(), rule, width, y0, y1, s, sink);
+    sweep_analytic_band(table(), rule, width, y0, y1, fixed_cells, s, sink);
   });
 }
 
 void detail::RasterizerImpl::sweep_analytic_band(const EdgeTableView& table, FillRule rule, int width, int y_from,
-                                                 int y_to, BandScratch& s, CoverageSink& sink) {
+                                                 int y_to, bool fixed_cells, BandScratch& s, CoverageSink& sink) {
   const std::size_t cells = static_cast<std::size_t>(width) + 2;  // a piece writes up to cell width + 1
   const std::size_t padded = cells + detail::kRowPadding;  // a narrow cluster's last block reads past, pieces write
   static_assert(detail::kRowPadding >= detail::kPieceSlack - 1);
   if (s.accumulation.size() < padded) s.accumulation.assign(padded, 0.0);
-  if (s.coverage.size() < padded) s.coverage.resize(padded);
+  // The fixed-point sweeps read and write blocks of eight from a run's first cell.
+  const std::size_t padded_fixed = cells + detail::kFixedBlock;
+  if (fixed_cells && s.fixed_cells.size() < padded_fixed) s.fixed_cells.assign(padded_fixed, 0);
+  if (s.coverage.size() < padded_fixed) s.coverage.resize(padded_fixed);
   // An edge whose bottom is at or above the band's top was retired before it (e.y1 > bottom keeps an edge).
   start_active(table, y_from, y_from, s.active);
-  const RowBuffers buffers{s.active, s.columns, s.accumulation.data(), s.coverage.data(),
+  const RowBuffers buffers{s.active, s.columns, s.accumulation.data(),
+                           fixed_cells ? s.fixed_cells.data() : nullptr, s.coverage.data(),
                            row_batch_buffers(s.batch, s.batch_coverage, kBatchRows, detail::kNarrowRowCoverage)};
   with_rule(rule, [&](auto r) {
     constexpr FillRule R = decltype(r)::value;
@@ -1109,6 +1220,7 @@ const std::vector<Edge>& Rasterizer::edges() const { return impl_->edges_; }
 void Rasterizer::set_dense_limit(std::int64_t cells) { impl_->dense_limit_ = cells; }
 void Rasterizer::set_exact_shortcut(bool on) { impl_->exact_shortcut_ = on; }
 void Rasterizer::set_rect_shortcut(bool on) { impl_->rect_shortcut_ = on; }
+void Rasterizer::set_fixed_cells(bool on) { impl_->fixed_cells_ = on; }
 void Rasterizer::set_threads(int threads) { impl_->set_threads(threads); }
 int Rasterizer::threads() const { return impl_->threads(); }
 int Rasterizer::last_fill_bands() const { return impl_->last_fill_bands_; }
@@ -1173,7 +1285,8 @@ void detail::RasterizerImpl::sweep_edges(FillRule rule, AntiAlias aa, int width,
   } else if (aa == AntiAlias::None) {
     sweep_aliased(rule, width, sink);
   } else {
-    sweep_analytic(rule, width, sink);
+    // Exact mode comes here for paths the analytic sweep is exact for: double cells only (1e-9, not 3e-7).
+    sweep_analytic(rule, width, fixed_cells_ && aa == AntiAlias::Analytic, sink);
   }
 }
 

@@ -1,5 +1,7 @@
 #include "support/capture.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cstdio>
 #include <sstream>
 
@@ -67,6 +69,16 @@ CoverageGrid rasterize(const Path& path, FillRule rule, AntiAlias aa, int width,
   CoverageGrid grid(width, height);
   Rasterizer r;
   r.fill(lines, rule, aa, width, height, grid);
+  return grid;
+}
+
+CoverageGrid row_sweep_grid(const Polylines& lines, FillRule rule, int width, int height, bool fixed_cells) {
+  CoverageGrid grid(width, height);
+  Rasterizer r;
+  r.set_dense_limit(0);
+  r.set_fixed_cells(fixed_cells);
+  r.fill(lines, rule, AntiAlias::Analytic, width, height, grid);
+  EXPECT_TRUE(grid.violations().empty()) << grid.violations().front();
   return grid;
 }
 

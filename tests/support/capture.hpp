@@ -36,6 +36,10 @@ class CoverageGrid final : public CoverageSink {
 /// Flattens `path` (identity transform, tolerance `tol`) and rasterizes it into a fresh grid.
 CoverageGrid rasterize(const Path& path, FillRule rule, AntiAlias aa, int width, int height, double tol = 0.01);
 
+/// The row sweep's coverage of `lines` in a fresh grid, whatever their box (no dense sweep); fixed_cells false: every
+/// row in double cells (Rasterizer::set_fixed_cells). Expects the sink's contract kept.
+CoverageGrid row_sweep_grid(const Polylines& lines, FillRule rule, int width, int height, bool fixed_cells = true);
+
 /// Parses a grid written as text: rows separated by newlines, cells by spaces; each cell a number
 /// (e.g. "1", "0.5", ".25", "0") or a fraction ("5/6"). Used for hand-made expected coverage.
 std::vector<std::vector<double>> parse_grid(const std::string& text);

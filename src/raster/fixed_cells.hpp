@@ -1,0 +1,199 @@
+// Fixed-point cells for the row sweep's rows of few edges: each piece's area shares (cells.hpp's split, computed in
+// doubles as before) rounded to 32-bit integers of 2^-26 of a pixel, and the running sum taken in integers.
+//
+// Why: the running sum is the sweep's per-pixel cost, and integers take eight cells a step where doubles take four,
+// with no rounding in the sum at all (so any order of additions gives the same bits). What it costs in accuracy: a
+// piece's shares are the differences of its running total rounded at every cell, so up to any cell a piece adds
+// what it should within half a unit (2^-27), and a pixel's running sum is within kFixedRowEdges half units of the
+// double cells': with the coverage's rounding to float, kFixedCellsError (3e-7; docs/design.md, "Fixed-point
+// cells"). Rows of more edges keep the double cells: their sums could pass 2^31, and the rounding would add up.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "raster/cells.hpp"
+#include "raster/cpu.hpp"
+
+#if defined(__SSE2__) || defined(_M_X64)
+#include <emmintrin.h>
+#endif
+
+namespace vraster::detail {
+
+constexpr int kFixedShift = 26;
+constexpr std::int32_t kFixedOne = std::int32_t{1} << kFixedShift;  // a whole pixel of area
+constexpr double kFixedUnit = 0x1p26;
+// Rows of at most this many active edges take fixed-point cells: a running sum is at most one unit per edge
+// (|winding| times kFixedOne), and 31 units fit 31 bits.
+constexpr std::size_t kFixedRowEdges = 31;
+// The most a fixed-point row's coverage differs from the double cells' (and so from the exact area, beyond the double
+// cells' own 1e-9): half a unit per edge, and the float's rounding of a coverage up to 1.
+constexpr double kFixedCellsError = static_cast<double>(kFixedRowEdges) * 0x1p-27 + 0x1p-24;
+// The integer sweep reads cells in blocks of eight from a run's first cell: a row's cells need this much padding.
+constexpr int kFixedBlock = 8;
+static_assert(kMergeGap >= kFixedBlock - 1, "a cluster's last block must not reach the next cluster's cells");
+
+/// v (a share of a pixel's area, |v| <= 2) in units of 2^-26, rounded to nearest (even on ties): the same integer
+/// with SSE2 and without.
+inline std::int32_t to_fixed(double v) {
+#if defined(__SSE2__) || defined(_M_X64)
+  return _mm_cvtsd_si32(_mm_set_sd(v * kFixedUnit));
+#else
+  return static_cast<std::int32_t>(std::lrint(v * kFixedUnit));
+#endif
+}
+
+/// Coverage of the running sum s under R, in units (0 .. kFixedOne): rule_coverage's values, in integers.
+template <FillRule R>
+inline std::int32_t fixed_coverage_units(std::int32_t s) {
+  if constexpr (R == FillRule::EvenOdd) {
+    const std::int32_t w = s & (2 * kFixedOne - 1);  // s modulo two units (two's complement: also for s < 0)
+    return std::min(w, 2 * kFixedOne - w);
+  } else if constexpr (R == FillRule::Positive) {
+    return std::clamp(s, 0, kFixedOne);
+  } else if constexpr (R == FillRule::Negative) {
+    return std::clamp(-s, 0, kFixedOne);
+  } else if constexpr (R == FillRule::AbsGeq2) {
+    return std::clamp(std::abs(s) - kFixedOne, 0, kFixedOne);
+  } else {
+    return std::min(std::abs(s), kFixedOne);
+  }
+}
+
+template <FillRule R>
+inline float fixed_coverage(std::int32_t s) {
+  return static_cast<float>(fixed_coverage_units<R>(s)) * (1.0f / static_cast<float>(kFixedOne));
+}
+
+/// accumulate_long_piece in fixed point, for a piece over more than three cells: the shares' running total is rounded
+/// at every cell instead of each share on its own, so the row's sum past the piece is off by one rounding, not one
+/// per cell it crosses. Both sweeps (AVX2 and portable) add a long piece this way.
+inline void accumulate_long_piece_fixed(std::int32_t* acc, double xa, double xb, double h, int i0, int i1) {
+  const double per_x = h / (xb - xa);
+  const double f0 = (i0 + 1) - xa;
+  const double h0 = per_x * f0, m0 = 1.0 - 0.5 * f0;
+  const double half = 0.5 * per_x;
+  const double f1 = xb - i1;
+  const double h1 = per_x * f1;
+  // Totals of the shares up to each cell (accumulate_long_piece's shares, in its order).
+  double total = h0 * (1.0 - m0);
+  std::int32_t done = to_fixed(total);
+  acc[i0] += done;
+  total = h0 + half;
+  for (int i = i0 + 1; i < i1; ++i) {
+    const std::int32_t now = to_fixed(total);
+    acc[i] += now - done;
+    done = now;
+    total += i + 1 < i1 ? 2.0 * half : half;
+  }
+  total += h1 * (1.0 - 0.5 * f1);
+  std::int32_t now = to_fixed(total);
+  acc[i1] += now - done;
+  done = now;
+  total += h1 * (0.5 * f1);
+  now = to_fixed(total);
+  acc[i1 + 1] += now - done;
+}
+
+/// The shares of a piece within three cells (split4's add0 .. add3), from cell i0 on: the running totals rounded and
+/// their differences added, so that the piece's sum up to any cell is off by one rounding.
+inline void accumulate_split_fixed(std::int32_t* acc, int i0, double add0, double add1, double then1, double add2,
+                                   double then2, double add3) {
+  const double c0 = add0, c1 = (c0 + add1) + then1, c2 = (c1 + add2) + then2, c3 = c2 + add3;
+  const std::int32_t q0 = to_fixed(c0), q1 = to_fixed(c1), q2 = to_fixed(c2), q3 = to_fixed(c3);
+  acc[i0] += q0;
+  acc[i0 + 1] += q1 - q0;
+  acc[i0 + 2] += q2 - q1;
+  acc[i0 + 3] += q3 - q2;
+}
+
+/// accumulate_piece in fixed point: the same shares as split4 gives the AVX2 sweep (accumulate_long_piece's numbers,
+/// or a piece inside one cell by its mean x), so both sweeps add the same integers.
+inline void accumulate_piece_fixed(std::int32_t* acc, double xa, double xb, double h) {
+  const double xl = std::min(xa, xb), xr = std::max(xa, xb);
+  const int i0 = static_cast<int>(xl);
+  const int k = static_cast<int>(xr) - i0;
+  if (k == 0) {
+    const double m = 0.5 * (xl + xr) - i0;
+    return accumulate_split_fixed(acc, i0, h * (1.0 - m), h * m, 0.0, 0.0, 0.0, 0.0);
+  }
+  if (k > 2) return accumulate_long_piece_fixed(acc, xl, xr, h, i0, i0 + k);
+  const double per_x = h / (xr - xl);
+  const double f0 = (i0 + 1) - xl;
+  const double h0 = per_x * f0, m0 = 1.0 - 0.5 * f0;
+  const double f1 = xr - (i0 + k);
+  const double h1 = per_x * f1, m1 = 0.5 * f1;
+  const double last0 = h1 * (1.0 - m1), last1 = h1 * m1;
+  if (k == 1) return accumulate_split_fixed(acc, i0, h0 * (1.0 - m0), h0 * m0, last0, last1, 0.0, 0.0);
+  const double whole = 0.5 * per_x;
+  accumulate_split_fixed(acc, i0, h0 * (1.0 - m0), h0 * m0, whole, whole, last0, last1);
+}
+
+/// cells[0, n) -> cov[0, n) under R from the running sum `sum` (left past them); zeroes the cells.
+template <FillRule R>
+inline void sweep_fixed_cells_scalar(std::int32_t* cells, float* cov, int n, std::int32_t& sum) {
+  for (int i = 0; i < n; ++i) {
+    sum += cells[i];
+    cells[i] = 0;
+    cov[i] = fixed_coverage<R>(sum);
+  }
+}
+
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+template <FillRule R>
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256i fixed_coverage_units_avx2(__m256i s) {
+  const __m256i one = _mm256_set1_epi32(kFixedOne), zero = _mm256_setzero_si256();
+  if constexpr (R == FillRule::EvenOdd) {
+    const __m256i w = _mm256_and_si256(s, _mm256_set1_epi32(2 * kFixedOne - 1));
+    return _mm256_min_epi32(w, _mm256_sub_epi32(_mm256_set1_epi32(2 * kFixedOne), w));
+  } else if constexpr (R == FillRule::Positive) {
+    return _mm256_min_epi32(_mm256_max_epi32(s, zero), one);
+  } else if constexpr (R == FillRule::Negative) {
+    return _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(zero, s), zero), one);
+  } else if constexpr (R == FillRule::AbsGeq2) {
+    return _mm256_min_epi32(_mm256_max_epi32(_mm256_sub_epi32(_mm256_abs_epi32(s), one), zero), one);
+  } else {
+    return _mm256_min_epi32(_mm256_abs_epi32(s), one);
+  }
+}
+
+/// Eight cells from the running sum in `carry` (all lanes) -> their eight coverages; the cells are zeroed. The sums
+/// are exact, so this gives sweep_fixed_cells_scalar's floats.
+template <FillRule R>
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256 sweep_fixed_block_avx2(std::int32_t* cells, __m256i& carry) {
+  auto* const p = reinterpret_cast<__m256i*>(cells);
+  __m256i v = _mm256_loadu_si256(p);
+  _mm256_storeu_si256(p, _mm256_setzero_si256());
+  v = _mm256_add_epi32(v, _mm256_slli_si256(v, 4));  // running sums inside each half
+  v = _mm256_add_epi32(v, _mm256_slli_si256(v, 8));
+  const __m256i low = _mm256_permute2x128_si256(v, v, 0x08);  // [0 | low half]
+  v = _mm256_add_epi32(v, _mm256_shuffle_epi32(low, 0xFF));   // the low half's total added to the high half
+  const __m256i total = _mm256_permutevar8x32_epi32(v, _mm256_set1_epi32(7));
+  const __m256i s = _mm256_add_epi32(v, carry);
+  carry = _mm256_add_epi32(carry, total);  // one addition a block on the carried chain
+  return _mm256_mul_ps(_mm256_cvtepi32_ps(fixed_coverage_units_avx2<R>(s)),
+                       _mm256_set1_ps(1.0f / static_cast<float>(kFixedOne)));
+}
+
+/// sweep_fixed_cells_scalar eight cells a step: reads and zeroes cells up to seven past n (which must be zero: a
+/// row's untouched cells) and writes coverage up to seven past n.
+template <FillRule R>
+[[gnu::target("avx2")]] inline void sweep_fixed_cells_avx2(std::int32_t* cells, float* cov, int n, std::int32_t& sum) {
+  __m256i carry = _mm256_set1_epi32(sum);
+  for (int i = 0; i < n; i += kFixedBlock) _mm256_storeu_ps(cov + i, sweep_fixed_block_avx2<R>(cells + i, carry));
+  sum = _mm256_cvtsi256_si32(carry);
+}
+#endif
+
+/// The sweep of a run picked at compile time (kAvx2: the caller was chosen per fill already).
+template <FillRule R, bool kAvx2>
+[[gnu::always_inline]] inline void sweep_fixed_cells(std::int32_t* cells, float* cov, int n, std::int32_t& sum) {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  if constexpr (kAvx2) return sweep_fixed_cells_avx2<R>(cells, cov, n, sum);
+#endif
+  sweep_fixed_cells_scalar<R>(cells, cov, n, sum);
+}
+
+}  // namespace vraster::detail

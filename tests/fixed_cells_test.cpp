@@ -1,0 +1,203 @@
+// Fixed-point cells (src/raster/fixed_cells.hpp): the row sweep's rows of at most 31 active edges sum their pieces in
+// 32-bit integers of 2^-26 of a pixel. Properties: within kFixedCellsError of the double cells for every rule, the
+// same bits as the double cells where a row has more edges, exact where the areas are whole units, the AVX2 split's
+// integers equal to the portable ones, and every piece's running total within half a unit of its double shares'.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "raster/cells.hpp"
+#include "raster/fixed_cells.hpp"
+#include "raster/rasterizer_p.hpp"
+#include "support/capture.hpp"
+#include "support/exact_reference.hpp"
+
+namespace vraster::test {
+namespace {
+
+constexpr FillRule kRules[] = {FillRule::NonZero, FillRule::EvenOdd, FillRule::Positive, FillRule::Negative,
+                               FillRule::AbsGeq2};
+
+CoverageGrid row_sweep(const std::vector<Polygon>& shapes, FillRule rule, int w, int h, bool fixed_cells) {
+  return row_sweep_grid(exact::polylines_of(shapes), rule, w, h, fixed_cells);
+}
+
+// The largest difference between two grids.
+double largest_difference(const CoverageGrid& a, const CoverageGrid& b, int w, int h) {
+  double worst = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) worst = std::max(worst, std::abs(double{a.at(x, y)} - b.at(x, y)));
+  }
+  return worst;
+}
+
+TEST(FixedCells, StayWithinTheirBoundOfTheDoubleCellsForEveryRule) {
+  // Overlapping random polygons (up to 3 x 9 edges in a row, long shallow pieces among them), both windings.
+  std::mt19937 rng(2612);
+  const int w = 160, h = 120;
+  double worst = 0;
+  for (int it = 0; it < 30; ++it) {
+    std::vector<Polygon> shapes;
+    for (int k = 0; k < 3; ++k) {
+      shapes.push_back(exact::random_polygon(rng, 3 + static_cast<int>(rng() % 7), -10, 170));
+    }
+    for (const FillRule rule : kRules) {
+      const CoverageGrid fixed = row_sweep(shapes, rule, w, h, true);
+      const CoverageGrid doubles = row_sweep(shapes, rule, w, h, false);
+      const double d = largest_difference(fixed, doubles, w, h);
+      ASSERT_LE(d, detail::kFixedCellsError) << "scene " << it << " rule " << to_string(rule);
+      worst = std::max(worst, d);
+    }
+  }
+  EXPECT_GT(worst, 0.0);  // the fixed-point rows were used (their rounding shows somewhere)
+}
+
+TEST(FixedCells, RowsOfMoreEdgesKeepTheDoubleCells) {
+  // A 40-point star: its middle rows hold more than kFixedRowEdges edges and are the double cells' to the bit; its
+  // tips have two edges a row and take the fixed-point cells.
+  Polygon star;
+  const int points = 40;
+  for (int i = 0; i < points; ++i) {
+    const double a = 2 * 3.141592653589793 * (i * 17 % points) / points;
+    star.push_back({100 + 90 * std::cos(a), 100 + 90 * std::sin(a)});
+  }
+  const std::vector<Polygon> shapes{star};
+  const int w = 200, h = 200;
+  std::vector<Edge> edges;
+  int y_min = 0, y_max = 0;
+  detail::build_edges(exact::polylines_of(shapes), w, h, edges, y_min, y_max);
+  for (const FillRule rule : {FillRule::NonZero, FillRule::EvenOdd}) {
+    const CoverageGrid fixed = row_sweep(shapes, rule, w, h, true);
+    const CoverageGrid doubles = row_sweep(shapes, rule, w, h, false);
+    int crowded = 0;
+    for (int y = 0; y < h; ++y) {
+      std::size_t active = 0;  // edges with a piece in row y
+      for (const Edge& e : edges) active += e.y0 < y + 1.0 && e.y1 > y ? 1 : 0;
+      if (active <= detail::kFixedRowEdges) continue;
+      ++crowded;
+      for (int x = 0; x < w; ++x) ASSERT_EQ(fixed.at(x, y), doubles.at(x, y)) << "row " << y << " pixel " << x;
+    }
+    EXPECT_GT(crowded, 50) << to_string(rule);
+    EXPECT_LE(largest_difference(fixed, doubles, w, h), detail::kFixedCellsError);
+  }
+}
+
+TEST(FixedCells, WholeUnitsAreExact) {
+  // Edges on pixel boundaries and at half pixels: every share is a whole number of units, so the coverage is the
+  // exact area (1, 0.5, 0.25), with no rounding at all.
+  const int w = 40, h = 20;
+  const std::vector<Polygon> shapes{{{2, 2}, {30, 2}, {30, 10}, {2, 10}},
+                                    {{4.5, 12.5}, {20.5, 12.5}, {20.5, 18}, {4.5, 18}}};
+  const CoverageGrid grid = row_sweep(shapes, FillRule::NonZero, w, h, true);
+  const std::vector<double> want = exact::trapezoid_coverage(shapes, FillRule::NonZero, w, h);
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      ASSERT_EQ(double{grid.at(x, y)}, want[static_cast<std::size_t>(y) * w + x]) << x << "," << y;
+    }
+  }
+  EXPECT_EQ(grid.at(4, 12), 0.25f);
+  EXPECT_EQ(grid.at(10, 12), 0.5f);
+  EXPECT_EQ(grid.at(10, 5), 1.0f);
+}
+
+TEST(FixedCells, ExactModeKeepsTheDoubleCells) {
+  // A path without crossings in exact mode takes the analytic row sweep (it is exact for such paths): in double
+  // cells, to 1e-9 of the reference, where the fixed-point rows would be off by up to 3e-7.
+  const int w = 300, h = 200;
+  for (int it = 0; it < 6; ++it) {
+    const double cx = 150 + 20 * std::sin(it), cy = 100 + 10 * std::cos(it);
+    const std::vector<Polygon> shapes{{{cx - 120.3, cy - 70.1}, {cx + 110.7, cy - 81.9}, {cx + 97.2, cy + 77.4},
+                                       {cx - 101.1, cy + 88.6}, {cx - 130.4, cy + 3.3}}};
+    CoverageGrid grid(w, h);
+    Rasterizer r;
+    r.set_dense_limit(0);
+    r.fill(exact::polylines_of(shapes), FillRule::NonZero, AntiAlias::Exact, w, h, grid);
+    const std::vector<double> want = exact::trapezoid_coverage(shapes, FillRule::NonZero, w, h);
+    std::vector<double> got(static_cast<std::size_t>(w) * h);
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) got[static_cast<std::size_t>(y) * w + x] = grid.at(x, y);
+    }
+    ASSERT_TRUE(exact::grids_near(got, want, w, 1e-9)) << "shape " << it;
+    // The same fill in analytic mode takes the fixed-point rows: within their bound, and not to 1e-9.
+    CoverageGrid analytic(w, h);
+    r.fill(exact::polylines_of(shapes), FillRule::NonZero, AntiAlias::Analytic, w, h, analytic);
+    EXPECT_LE(largest_difference(analytic, grid, w, h), detail::kFixedCellsError);
+  }
+}
+
+// A piece's shares as the fixed-point cells get them, and the running totals of its double shares (accumulate_piece).
+struct PieceShares {
+  std::vector<std::int32_t> fixed;
+  std::vector<double> totals;
+};
+
+PieceShares shares_of(double xa, double xb, double h) {
+  const int cells = 64;
+  std::vector<std::int32_t> fixed(cells + detail::kFixedBlock, 0);
+  std::vector<double> doubles(cells + detail::kFixedBlock, 0.0);
+  detail::accumulate_piece_fixed(fixed.data(), xa, xb, h);
+  detail::accumulate_piece(doubles.data(), xa, xb, h);
+  PieceShares s{fixed, std::vector<double>(doubles.size())};
+  double total = 0;
+  for (std::size_t i = 0; i < doubles.size(); ++i) s.totals[i] = total += doubles[i];
+  return s;
+}
+
+TEST(FixedCells, EveryPieceIsWithinHalfAUnitUpToEveryCell) {
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<double> x(0.0, 50.0), span(0.0, 9.0), height(-1.0, 1.0);
+  for (int it = 0; it < 20000; ++it) {
+    const double xa = x(rng);
+    const double xb = it % 3 == 0 ? xa + span(rng) * 0.05 : xa + span(rng);  // inside one cell, and longer
+    const double h = it % 5 == 0 ? std::copysign(1.0, height(rng)) : height(rng);
+    const PieceShares s = shares_of(it % 2 ? xa : xb, it % 2 ? xb : xa, h);
+    std::int64_t running = 0;
+    for (std::size_t i = 0; i < s.fixed.size(); ++i) {
+      running += s.fixed[i];
+      // Half a unit, plus the double shares' own round-off in the long sums.
+      ASSERT_LE(std::abs(static_cast<double>(running) - s.totals[i] * detail::kFixedUnit), 0.5 + 1e-6)
+          << "piece " << xa << " .. " << xb << " height " << h << ", cell " << i;
+    }
+  }
+}
+
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+// Four pieces split as the AVX2 sweep splits them (in a function compiled for AVX2).
+[[gnu::target("avx2")]] detail::SplitLanes<true> split_avx2(const double* xa, const double* xb, const double* h) {
+  return detail::SplitLanes<true>(_mm256_loadu_pd(xa), _mm256_loadu_pd(xb), _mm256_loadu_pd(h));
+}
+
+TEST(FixedCells, TheAvx2SplitGivesThePortableIntegers) {
+  if (!detail::cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor";
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> x(0.0, 40.0), span(0.0, 4.0), height(-1.0, 1.0);
+  int long_pieces = 0;
+  for (int it = 0; it < 5000; ++it) {
+    double xa[4], xb[4], h[4];
+    for (int i = 0; i < 4; ++i) {
+      xa[i] = x(rng);
+      xb[i] = xa[i] + (i == 0 ? span(rng) * 0.1 : span(rng)) * (rng() % 2 ? 1 : -1);
+      xb[i] = std::max(xb[i], 0.0);
+      h[i] = height(rng);
+    }
+    const detail::SplitLanes<true> split = split_avx2(xa, xb, h);
+    for (int i = 0; i < 4; ++i) {
+      std::vector<std::int32_t> portable(64, 0);
+      detail::accumulate_piece_fixed(portable.data(), xa[i], xb[i], h[i]);
+      if (split.past[i] > 2) {  // long pieces: both sweeps call accumulate_long_piece_fixed
+        ++long_pieces;
+        continue;
+      }
+      std::vector<std::int32_t> simd(64, 0);
+      for (int c = 0; c < 4; ++c) simd[static_cast<std::size_t>(split.first[i] + c)] += split.fixed[c][i];
+      ASSERT_EQ(simd, portable) << "piece " << xa[i] << " .. " << xb[i] << " height " << h[i];
+    }
+  }
+  EXPECT_GT(long_pieces, 100);
+}
+#endif
+
+}  // namespace
+}  // namespace vraster::test
