@@ -61,7 +61,7 @@ template <FillRule R>
   const __m256i c16 = _mm256_unpacklo_epi8(_mm256_set1_epi32(static_cast<int>(color)), _mm256_setzero_si256());
   __m256i carry = _mm256_set1_epi32(sum);
   for (int i = 0; i < count; i += kFixedBlock) {
-    const __m256 coverage = sweep_fixed_block_avx2<R>(cells + i, carry);
+    const __m256 coverage = sweep_fixed_block_avx2<R, false>(cells + i, carry);  // (the snap moves no level)
     const int n = std::min(kFixedBlock, pixels - i);
     if (n <= 0) continue;  // cells right of the image: swept for the sum only
     const __m256i k = a2::quantize8x8(coverage, _mm256_set1_ps(1.f));

@@ -5,8 +5,8 @@
 // with no rounding in the sum at all (so any order of additions gives the same bits). What it costs in accuracy: a
 // piece's shares are the differences of its running total rounded at every cell, so up to any cell a piece adds
 // what it should within half a unit (2^-27), and a pixel's running sum is within kFixedRowEdges half units of the
-// double cells': with the coverage's rounding to float, kFixedCellsError (3e-7; docs/design.md, "Fixed-point
-// cells"). Rows of more edges keep the double cells: their sums could pass 2^31, and the rounding would add up.
+// double cells': with the snap of residues (kFixedSnapUnits) and the coverage's rounding to float,
+// kFixedCellsError (5.4e-7; docs/design.md, "Fixed-point cells"). Rows of more edges keep the double cells: their sums could pass 2^31, and the rounding would add up.
 #pragma once
 
 #include <algorithm>
@@ -28,9 +28,14 @@ constexpr double kFixedUnit = 0x1p26;
 // Rows of at most this many active edges take fixed-point cells: a running sum is at most one unit per edge
 // (|winding| times kFixedOne), and 31 units fit 31 bits.
 constexpr std::size_t kFixedRowEdges = 31;
+// A row whose winding returns to 0 (or to a whole number) may keep a residue of up to half a unit per edge, where the
+// pieces' rounded totals do not cancel: coverage within this many units of 0 or of 1 snaps to it, as the double
+// cells' coverage within 2^-43 does. Where nothing is drawn, the coverage is exactly 0.
+constexpr std::int32_t kFixedSnapUnits = (kFixedRowEdges + 1) / 2;
 // The most a fixed-point row's coverage differs from the double cells' (and so from the exact area, beyond the double
-// cells' own 1e-9): half a unit per edge, and the float's rounding of a coverage up to 1.
-constexpr double kFixedCellsError = static_cast<double>(kFixedRowEdges) * 0x1p-27 + 0x1p-24;
+// cells' own 1e-9): half a unit per edge, the snap, and the float's rounding of a coverage up to 1 (5.4e-7).
+constexpr double kFixedCellsError =
+    static_cast<double>(kFixedRowEdges + 1) * 0x1p-27 + kFixedSnapUnits * 0x1p-26 + 0x1p-24;
 // The integer sweep reads cells in blocks of eight from a run's first cell: a row's cells need this much padding.
 constexpr int kFixedBlock = 8;
 static_assert(kMergeGap >= kFixedBlock - 1, "a cluster's last block must not reach the next cluster's cells");
@@ -45,9 +50,10 @@ inline std::int32_t to_fixed(double v) {
 #endif
 }
 
-/// Coverage of the running sum s under R, in units (0 .. kFixedOne): rule_coverage's values, in integers.
+/// Coverage of the running sum s under R, in units (0 .. kFixedOne): rule_coverage's values, in integers, before the
+/// snap.
 template <FillRule R>
-inline std::int32_t fixed_coverage_units(std::int32_t s) {
+inline std::int32_t unsnapped_coverage_units(std::int32_t s) {
   if constexpr (R == FillRule::EvenOdd) {
     const std::int32_t w = s & (2 * kFixedOne - 1);  // s modulo two units (two's complement: also for s < 0)
     return std::min(w, 2 * kFixedOne - w);
@@ -60,6 +66,13 @@ inline std::int32_t fixed_coverage_units(std::int32_t s) {
   } else {
     return std::min(std::abs(s), kFixedOne);
   }
+}
+
+/// The same, within kFixedSnapUnits of 0 or of a whole unit snapped to it.
+template <FillRule R>
+inline std::int32_t fixed_coverage_units(std::int32_t s) {
+  const std::int32_t c = unsnapped_coverage_units<R>(s);
+  return c <= kFixedSnapUnits ? 0 : c >= kFixedOne - kFixedSnapUnits ? kFixedOne : c;
 }
 
 template <FillRule R>
@@ -143,7 +156,7 @@ inline void sweep_fixed_cells_scalar(std::int32_t* cells, float* cov, int n, std
 
 #ifdef VRASTER_HAVE_AVX2_KERNELS
 template <FillRule R>
-[[gnu::target("avx2"), gnu::always_inline]] inline __m256i fixed_coverage_units_avx2(__m256i s) {
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256i unsnapped_coverage_units_avx2(__m256i s) {
   const __m256i one = _mm256_set1_epi32(kFixedOne), zero = _mm256_setzero_si256();
   if constexpr (R == FillRule::EvenOdd) {
     const __m256i w = _mm256_and_si256(s, _mm256_set1_epi32(2 * kFixedOne - 1));
@@ -159,9 +172,19 @@ template <FillRule R>
   }
 }
 
-/// Eight cells from the running sum in `carry` (all lanes) -> their eight coverages; the cells are zeroed. The sums
-/// are exact, so this gives sweep_fixed_cells_scalar's floats.
+// fixed_coverage_units eight lanes at a time.
 template <FillRule R>
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256i fixed_coverage_units_avx2(__m256i s) {
+  const __m256i c = unsnapped_coverage_units_avx2<R>(s);
+  const __m256i above = _mm256_and_si256(c, _mm256_cmpgt_epi32(c, _mm256_set1_epi32(kFixedSnapUnits)));
+  const __m256i near_one = _mm256_cmpgt_epi32(c, _mm256_set1_epi32(kFixedOne - kFixedSnapUnits - 1));
+  return _mm256_blendv_epi8(above, _mm256_set1_epi32(kFixedOne), near_one);
+}
+
+/// Eight cells from the running sum in `carry` (all lanes) -> their eight coverages; the cells are zeroed. The sums
+/// are exact, so this gives sweep_fixed_cells_scalar's floats. kSnap false: without the snap, for 8-bit pixels,
+/// which round what it snaps to the same level (0 and 255).
+template <FillRule R, bool kSnap = true>
 [[gnu::target("avx2"), gnu::always_inline]] inline __m256 sweep_fixed_block_avx2(std::int32_t* cells, __m256i& carry) {
   auto* const p = reinterpret_cast<__m256i*>(cells);
   __m256i v = _mm256_loadu_si256(p);
@@ -173,8 +196,8 @@ template <FillRule R>
   const __m256i total = _mm256_permutevar8x32_epi32(v, _mm256_set1_epi32(7));
   const __m256i s = _mm256_add_epi32(v, carry);
   carry = _mm256_add_epi32(carry, total);  // one addition a block on the carried chain
-  return _mm256_mul_ps(_mm256_cvtepi32_ps(fixed_coverage_units_avx2<R>(s)),
-                       _mm256_set1_ps(1.0f / static_cast<float>(kFixedOne)));
+  const __m256i units = kSnap ? fixed_coverage_units_avx2<R>(s) : unsnapped_coverage_units_avx2<R>(s);
+  return _mm256_mul_ps(_mm256_cvtepi32_ps(units), _mm256_set1_ps(1.0f / static_cast<float>(kFixedOne)));
 }
 
 /// sweep_fixed_cells_scalar eight cells a step: reads and zeroes cells up to seven past n (which must be zero: a
