@@ -5,8 +5,9 @@
 // with no rounding in the sum at all (so any order of additions gives the same bits). What it costs in accuracy: a
 // piece's shares are the differences of its running total rounded at every cell, so up to any cell a piece adds
 // what it should within half a unit (2^-27), and a pixel's running sum is within kFixedRowEdges half units of the
-// double cells': with the snap of residues (kFixedSnapUnits) and the coverage's rounding to float,
-// kFixedCellsError (5.4e-7; docs/design.md, "Fixed-point cells"). Rows of more edges keep the double cells: their sums could pass 2^31, and the rounding would add up.
+// double cells': with the snap of residues (kFixedSnapUnits) and the coverage's rounding to float, kFixedCellsError
+// (5.4e-7; docs/design.md, "Fixed-point cells"). Rows of more edges keep the double cells: their sums could pass
+// 2^31, and the rounding would add up.
 #pragma once
 
 #include <algorithm>
