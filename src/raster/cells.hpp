@@ -93,7 +93,8 @@ template <FillRule R>
   const __m256d sign = _mm256_set1_pd(-0.0);
   if constexpr (R == FillRule::EvenOdd) {
     __m256d a = _mm256_andnot_pd(sign, s);
-    const __m256d half_floor = _mm256_round_pd(_mm256_mul_pd(a, _mm256_set1_pd(0.5)), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    const __m256d half_floor =
+        _mm256_round_pd(_mm256_mul_pd(a, _mm256_set1_pd(0.5)), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
     a = _mm256_sub_pd(a, _mm256_mul_pd(_mm256_set1_pd(2.0), half_floor));
     return _mm256_min_pd(a, _mm256_sub_pd(_mm256_set1_pd(2.0), a));
   } else if constexpr (R == FillRule::Positive) {
@@ -443,8 +444,8 @@ constexpr int kRowPadding = 4;
 // Leaves the accumulation cells and the touched bits zero. kAvx2: compiled into an AVX2 function whose row has
 // kRowPadding cells (and coverage) of padding, so runs of up to four cells take one AVX2 block.
 template <FillRule R, bool kAvx2 = false>
-[[gnu::always_inline]] inline void resolve_row(int y, int width, int x_lo, int x_hi, double* acc, std::uint64_t* bits, float* cov,
-                 CoverageSink& sink) {
+[[gnu::always_inline]] inline void resolve_row(int y, int width, int x_lo, int x_hi, double* acc, std::uint64_t* bits,
+                                               float* cov, CoverageSink& sink) {
   double sum = 0;
   int x = x_lo;
   int run = -1;  // first pixel of the open coverage run (cov[i - run] is pixel i), -1 when none is open
