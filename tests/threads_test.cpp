@@ -17,6 +17,7 @@
 #include <random>
 #include <tuple>
 
+#include "raster/rasterizer_p.hpp"
 #include "vraster/canvas.hpp"
 #include "vraster/composite.hpp"
 #include "vraster/renderer.hpp"
@@ -698,4 +699,28 @@ TEST(Threads, QueuedBandsRunOnSeveralThreadsAtOnce) {
 }
 
 }  // namespace
+// The bound that sends a small fill straight to fill() on a pool's rasterizer (fill_queued) must bound the work
+// estimate of the fill's edges: a fill it underrates would be drawn at once where the queue should take it.
+TEST(Threads, TheFewPointsWorkBoundBoundsTheEdgesEstimate) {
+  std::mt19937 rng(16);
+  std::uniform_real_distribution<double> coord(-50, 300);
+  for (int it = 0; it < 2000; ++it) {
+    Polylines lines;
+    const int n = 1 + it % static_cast<int>(detail::kFewPoints);
+    for (int i = 0; i < n; ++i) lines.points.push_back({coord(rng), coord(rng) * (it % 3 == 0 ? 0.05 : 1.0)});
+    lines.ends.push_back(static_cast<std::uint32_t>(n));
+    lines.closed.push_back(1);
+    std::vector<Edge> edges;
+    int y_min = 0, y_max = 0;
+    detail::build_edges(lines, 400, 400, edges, y_min, y_max);
+    ASSERT_LE(detail::band_work(edges), detail::few_points_work_bound(lines) * (1 + 1e-12)) << "case " << it;
+  }
+  Polylines many;
+  for (int i = 0; i <= static_cast<int>(detail::kFewPoints); ++i) many.points.push_back({1.0 * i, 2.0 * i});
+  many.ends.push_back(static_cast<std::uint32_t>(many.points.size()));
+  many.closed.push_back(1);
+  EXPECT_EQ(detail::few_points_work_bound(many), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(detail::few_points_work_bound(Polylines{}), std::numeric_limits<double>::infinity());
+}
+
 }  // namespace vraster::test
