@@ -16,6 +16,19 @@
 
 namespace vraster::detail {
 
+/// The first n (1 to 8) of the pixels at p under colour c16 (16-bit lanes) at the coverage levels k: one step of both
+/// kernels below.
+[[gnu::target("avx2"), gnu::always_inline]] inline void blend_step8(std::uint32_t* p, int n, __m256i c16, __m256i k) {
+  namespace a2 = avx2;
+  if (n == 8) {
+    auto* q = reinterpret_cast<__m256i*>(p);
+    _mm256_storeu_si256(q, a2::over_coverage8(_mm256_loadu_si256(q), c16, k));
+  } else {
+    const __m256i d = _mm256_maskload_epi32(reinterpret_cast<const int*>(p), a2::first_lanes(n));
+    a2::store_first(p, a2::over_coverage8(d, c16, k), n);
+  }
+}
+
 /// Sweeps cells[0, count) from the running sum `sum` (left past them) in blocks of four, zeroing them, and blends the
 /// coverage of the first `pixels` (at most count) onto px[0, pixels) with colour `color` (premultiplied, not fully
 /// transparent). The cells up to three past count, which the last block reads, must be zero (untouched); they are
@@ -38,15 +51,7 @@ template <FillRule R>
     }
     const int n = std::min(8, pixels - i);
     if (n <= 0) continue;  // cells right of the image: swept for the sum only
-    const __m256i k = a2::quantize8x8(_mm256_set_m128(high, low), _mm256_set1_ps(1.f));
-    std::uint32_t* const p = px + i;
-    if (n == 8) {
-      auto* q = reinterpret_cast<__m256i*>(p);
-      _mm256_storeu_si256(q, a2::over_coverage8(_mm256_loadu_si256(q), c16, k));
-    } else {
-      const __m256i d = _mm256_maskload_epi32(reinterpret_cast<const int*>(p), a2::first_lanes(n));
-      a2::store_first(p, a2::over_coverage8(d, c16, k), n);
-    }
+    blend_step8(px + i, n, c16, a2::quantize8x8(_mm256_set_m128(high, low), _mm256_set1_ps(1.f)));
   }
   sum = _mm_cvtsd_f64(_mm256_castpd256_pd128(carry));
 }
@@ -64,15 +69,7 @@ template <FillRule R>
     const __m256 coverage = sweep_fixed_block_avx2<R, false>(cells + i, carry);  // (the snap moves no level)
     const int n = std::min(kFixedBlock, pixels - i);
     if (n <= 0) continue;  // cells right of the image: swept for the sum only
-    const __m256i k = a2::quantize8x8(coverage, _mm256_set1_ps(1.f));
-    std::uint32_t* const p = px + i;
-    if (n == kFixedBlock) {
-      auto* q = reinterpret_cast<__m256i*>(p);
-      _mm256_storeu_si256(q, a2::over_coverage8(_mm256_loadu_si256(q), c16, k));
-    } else {
-      const __m256i d = _mm256_maskload_epi32(reinterpret_cast<const int*>(p), a2::first_lanes(n));
-      a2::store_first(p, a2::over_coverage8(d, c16, k), n);
-    }
+    blend_step8(px + i, n, c16, a2::quantize8x8(coverage, _mm256_set1_ps(1.f)));
   }
   sum = _mm256_cvtsi256_si32(carry);
 }

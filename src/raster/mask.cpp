@@ -16,6 +16,7 @@
 #endif
 
 #include "raster/cells.hpp"
+#include "raster/point_bounds.hpp"
 #include "vraster/error.hpp"
 #include "raster/rasterizer_p.hpp"
 #include "vraster/raster.hpp"
@@ -314,52 +315,6 @@ void clear_rows(std::uint8_t* mask, std::ptrdiff_t stride, int width, int from, 
   for (int y = from; y < to; ++y) std::memset(mask + y * stride, 0, static_cast<std::size_t>(width));
 }
 
-// The box of the points, and whether they are all finite (the box means nothing when they are not). With SSE2, an
-// [x, y] pair at a time with two sets of running bounds: one minimum and maximum after another per point made
-// chains of dependent instructions that took a tenth of a small glyph's time.
-struct PointBounds {
-  double x_lo = 0, x_hi = 0, y_lo = 0, y_hi = 0;
-  bool finite = true;
-};
-
-PointBounds point_bounds(const std::vector<Point>& points) {
-  PointBounds b;
-  if (points.empty()) return b;
-#ifdef VRASTER_MASK_SSE2
-  static_assert(sizeof(Point) == 2 * sizeof(double));
-  const double* xy = &points[0].x;
-  const std::size_t n = points.size();
-  __m128d lo0 = _mm_loadu_pd(xy), hi0 = lo0, lo1 = lo0, hi1 = lo0;
-  __m128d bad = _mm_setzero_pd();  // all ones in a lane that saw an infinity or NaN (x - x is NaN only for those)
-  auto take = [&](__m128d v, __m128d& lo, __m128d& hi) {
-    lo = _mm_min_pd(lo, v);
-    hi = _mm_max_pd(hi, v);
-    const __m128d zero_if_finite = _mm_sub_pd(v, v);
-    bad = _mm_or_pd(bad, _mm_cmpunord_pd(zero_if_finite, zero_if_finite));
-  };
-  std::size_t i = 0;
-  for (; i + 2 <= n; i += 2) {
-    take(_mm_loadu_pd(xy + 2 * i), lo0, hi0);
-    take(_mm_loadu_pd(xy + 2 * i + 2), lo1, hi1);
-  }
-  if (i < n) take(_mm_loadu_pd(xy + 2 * i), lo0, hi0);
-  double lo[2], hi[2];
-  _mm_storeu_pd(lo, _mm_min_pd(lo0, lo1));
-  _mm_storeu_pd(hi, _mm_max_pd(hi0, hi1));
-  b = {lo[0], hi[0], lo[1], hi[1], _mm_movemask_pd(bad) == 0};
-#else
-  b = {points[0].x, points[0].x, points[0].y, points[0].y, true};
-  for (const Point& p : points) {
-    b.x_lo = std::min(b.x_lo, p.x);
-    b.x_hi = std::max(b.x_hi, p.x);
-    b.y_lo = std::min(b.y_lo, p.y);
-    b.y_hi = std::max(b.y_hi, p.y);
-    b.finite = b.finite && std::isfinite(p.x) && std::isfinite(p.y);
-  }
-#endif
-  return b;
-}
-
 }  // namespace
 
 void detail::RasterizerImpl::fill_mask(const Polylines& lines, FillRule rule, int width, int height,
@@ -368,7 +323,7 @@ void detail::RasterizerImpl::fill_mask(const Polylines& lines, FillRule rule, in
   if (!mask) throw Error("fill_mask: the mask is null");
   if (stride < width) throw Error("fill_mask: the stride is smaller than the width");
   // Bounds of the points: rows to resolve, and whether everything lies inside the mask.
-  const auto [x_lo, x_hi, y_lo, y_hi, finite] = point_bounds(lines.points);
+  const auto [x_lo, x_hi, y_lo, y_hi, finite] = detail::point_bounds(lines.points);
   const double w = width, h = height;
   // Not finite: the general sweep, which skips the contours with a NaN or infinite point.
   const bool inside = finite && x_lo >= -kBorderSlack && y_lo >= -kBorderSlack && x_hi <= w + kBorderSlack &&
