@@ -5,15 +5,18 @@
 
 #include <random>
 
+#include "raster/cpu.hpp"
 #include "raster/fixed_cells.hpp"
 #include "raster/rasterizer_p.hpp"
 #include "support/capture.hpp"
 #include "support/exact_reference.hpp"
+#include "vraster/renderer.hpp"
 
 namespace vraster::test {
 namespace {
 
-// dense_limit 0: the row sweep; fixed_cells false: its rows all in double cells (the fixed-point ones are within
+// dense_limit 0: the row sweep; fixed_cells false: every row in double cells (the fixed-point ones, rows of few
+// edges in the row sweep and wide blocks of fills of few edges in the dense sweep, are within
 // detail::kFixedCellsError of them).
 CoverageGrid fill_with(const Polylines& lines, FillRule rule, int w, int h, std::int64_t dense_limit,
                        bool fixed_cells = true) {
@@ -38,8 +41,9 @@ int compare_every_rule(const Path& path, int w, int h, int iteration) {
     const CoverageGrid rows = fill_with(lines, rule, w, h, 0);
     for (int y = 0; y < h; ++y) {
       for (int x = 0; x < w; ++x) {
-        EXPECT_NEAR(dense.at(x, y), rows.at(x, y), 1e-6) << "iteration " << iteration << " rule " << to_string(rule)
-                                                          << " pixel " << x << "," << y;
+        // (each within kFixedCellsError of the double cells, where its cells are fixed-point)
+        EXPECT_NEAR(dense.at(x, y), rows.at(x, y), 1e-9 + 2 * detail::kFixedCellsError)
+            << "iteration " << iteration << " rule " << to_string(rule) << " pixel " << x << "," << y;
         if (::testing::Test::HasFailure()) return compared;
       }
     }
@@ -146,9 +150,10 @@ TEST(DenseSweep, ThinShapesInStripsMatchTheExactReference) {
     const std::vector<Polygon> shape{it % 2 == 0 ? Polygon{a, b, c} : Polygon{c, b, a}};
     const Polylines lines = exact::polylines_of(shape);
     const std::vector<double> want = exact::trapezoid_coverage(shape, FillRule::NonZero, side, side);
-    // The dense sweep, the row sweep in double cells (both to 1e-9), the row sweep with fixed-point rows.
-    for (const auto& [limit, fixed] : {std::pair{Rasterizer::kDefaultDenseLimit, false},
-                                       std::pair{std::int64_t{0}, false}, std::pair{std::int64_t{0}, true}}) {
+    // The dense sweep and the row sweep in double cells (both to 1e-9), and both in fixed-point cells.
+    for (const auto& [limit, fixed] :
+         {std::pair{Rasterizer::kDefaultDenseLimit, false}, std::pair{std::int64_t{0}, false},
+          std::pair{Rasterizer::kDefaultDenseLimit, true}, std::pair{std::int64_t{0}, true}}) {
       const CoverageGrid got = fill_with(lines, FillRule::NonZero, side, side, limit, fixed);
       std::vector<double> values(static_cast<std::size_t>(side) * side);
       for (int y = 0; y < side; ++y) {
@@ -214,19 +219,88 @@ TEST(DenseSweep, ConvexShapesWithTheirRowsPiecesNotedMatchTheExactReference) {
       }
     }
     for (const FillRule rule : {FillRule::NonZero, FillRule::EvenOdd}) {
-      // (rows the default limit still leaves to the row sweep in double cells, as `rows`)
-      const CoverageGrid got = fill_with(lines, rule, w, h, Rasterizer::kDefaultDenseLimit, false);
-      std::vector<double> values(static_cast<std::size_t>(w) * h);
-      for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) {
-          values[static_cast<std::size_t>(y) * w + x] = got.at(x, y);
-          ASSERT_NEAR(got.at(x, y), rows.at(x, y), 1e-9) << "shape " << it << " pixel " << x << "," << y;
+      // In double cells (rows the default limit still leaves to the row sweep in double cells, as `rows`) to 1e-9;
+      // in fixed-point cells (the shapes of at most 31 edges) to their bound.
+      for (const bool fixed : {false, true}) {
+        const CoverageGrid got = fill_with(lines, rule, w, h, Rasterizer::kDefaultDenseLimit, fixed);
+        const double tolerance = 1e-9 + (fixed ? detail::kFixedCellsError : 0.0);
+        std::vector<double> values(static_cast<std::size_t>(w) * h);
+        for (int y = 0; y < h; ++y) {
+          for (int x = 0; x < w; ++x) {
+            values[static_cast<std::size_t>(y) * w + x] = got.at(x, y);
+            ASSERT_NEAR(got.at(x, y), rows.at(x, y), tolerance) << "shape " << it << " pixel " << x << "," << y;
+          }
         }
+        ASSERT_TRUE(exact::grids_near(values, want, w, tolerance))
+            << "shape " << it << " rule " << to_string(rule) << " fixed cells " << fixed;
       }
-      ASSERT_TRUE(exact::grids_near(values, want, w, 1e-9)) << "shape " << it << " rule " << to_string(rule);
     }
   }
   EXPECT_GE(ranged, shapes / 2);  // most shapes are large enough to take the noted rows
+}
+
+// Wide dense blocks of fills of few edges (Trimmed rows: polygons of a few dozen columns; Ranged rows: large convex
+// shapes) take fixed-point cells. Their integers are the same with and without AVX2 (the split's rounded shares,
+// then exact sums), and so are the coverage and the pixels blended straight from the cells (8-bit solid colours,
+// the fused path), one thread or two. The comparison is not vacuous: the fixed-point coverage differs from the
+// double cells' somewhere in most shapes.
+TEST(DenseSweep, FixedPointBlocksGiveTheSameBitsWithAndWithoutAvx2AndWithThreads) {
+  std::mt19937 rng(5150);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const int w = 240, h = 200;
+  int differs = 0;
+  for (int it = 0; it < 40; ++it) {
+    Path path;
+    if (it % 2 == 0) {  // large and convex: Ranged rows
+      const Polygon p = convex(w * unit(rng), h * unit(rng), 40 + 100 * unit(rng), 40 + 100 * unit(rng),
+                               3.14159 * unit(rng), 3 + static_cast<int>(rng() % 20));
+      path.move_to(p[0]);
+      for (std::size_t i = 1; i < p.size(); ++i) path.line_to(p[i]);
+      path.close();
+    } else {  // a polygon a few dozen cells wide, self-intersecting: Trimmed rows
+      const double cx = w * unit(rng), cy = h * unit(rng);
+      std::uniform_real_distribution<double> d(-25, 25);
+      path.move_to(cx + d(rng), cy + d(rng));
+      for (int i = 1; i < 3 + static_cast<int>(rng() % 12); ++i) path.line_to(cx + d(rng), cy + d(rng));
+      path.close();
+    }
+    Polylines lines;
+    flatten(path, Affine{}, FlattenOptions{}, lines);
+    const FillRule rule = it % 4 < 2 ? FillRule::NonZero : FillRule::EvenOdd;
+    const CoverageGrid simd = fill_with(lines, rule, w, h, Rasterizer::kDefaultDenseLimit);
+    CoverageGrid portable(1, 1);
+    detail::portable_kernels_forced() = true;
+    portable = fill_with(lines, rule, w, h, Rasterizer::kDefaultDenseLimit);
+    detail::portable_kernels_forced() = false;
+    const CoverageGrid doubles = fill_with(lines, rule, w, h, Rasterizer::kDefaultDenseLimit, false);
+    bool any_difference = false;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        ASSERT_EQ(simd.at(x, y), portable.at(x, y)) << "shape " << it << " pixel " << x << "," << y;
+        ASSERT_NEAR(simd.at(x, y), doubles.at(x, y), detail::kFixedCellsError) << "shape " << it;
+        any_difference = any_difference || simd.at(x, y) != doubles.at(x, y);
+      }
+    }
+    differs += any_difference;
+    // Pixels: one thread with AVX2 (cells blended into the pixels), portable kernels, two threads.
+    auto draw = [&](int threads) {
+      Image image(w, h);
+      image.clear(Color{0.2f, 0.4f, 0.6f, 0.8f});
+      Renderer renderer;
+      renderer.set_threads(threads);
+      FillOptions options;
+      options.rule = rule;
+      renderer.fill(image, path, Affine{}, Color{0.9f, 0.3f, 0.1f, it % 3 == 0 ? 1.0f : 0.7f}, options);
+      return image;
+    };
+    const Image one = draw(1), two = draw(2);
+    detail::portable_kernels_forced() = true;
+    const Image portable_pixels = draw(1);
+    detail::portable_kernels_forced() = false;
+    ASSERT_EQ(one.data, portable_pixels.data) << "shape " << it;
+    ASSERT_EQ(one.data, two.data) << "shape " << it;
+  }
+  EXPECT_GE(differs, 20);
 }
 
 TEST(DenseSweep, WindingOfAShapeLeavingTheImageOnTheRightHoldsToTheRowEnd) {

@@ -11,6 +11,7 @@
 #include <numbers>
 #include <random>
 
+#include "raster/fixed_cells.hpp"
 #include "support/capture.hpp"
 #include "support/exact_reference.hpp"
 #include "support/reference.hpp"
@@ -284,8 +285,9 @@ TEST(NonExteriorRandom, MatchesFloodFillReference) {
                            1e-9, &err))
         << "seed " << seed;
     worst = std::max(worst, err);
+    // (analytic: the boundary's fill in fixed-point cells where it has few edges)
     EXPECT_TRUE(grids_near(engine_coverage(contours, FillRule::NonExterior, AntiAlias::Analytic, size, size), want,
-                           size, 1e-9))
+                           size, 1e-9 + detail::kFixedCellsError))
         << "seed " << seed;
   }
   std::printf("[NonExteriorRandom] max |engine - flood-fill reference| = %.3g\n", worst);

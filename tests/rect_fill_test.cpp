@@ -1,12 +1,15 @@
 // The axis-aligned rectangle fast path (src/raster/rect.cpp) against the general sweeps on seeded random rectangles:
 // fractional and whole-pixel edges, partly or wholly outside the image, both orientations, any starting corner,
 // under transforms that keep them axis-aligned, for every anti-aliasing mode and fill rule. The fast path repeats
-// the sweeps' arithmetic, so coverage must match bit for bit (not just to round-off), and so must 8- and 16-bit
-// pixels drawn through the compositor (whose span and row paths quantize coverage the same way).
+// the sweeps' arithmetic in double cells, so coverage must match the sweeps in double cells bit for bit (not just to
+// round-off), and so must 8- and 16-bit pixels drawn through the compositor (whose span and row paths quantize
+// coverage the same way). The sweeps' fixed-point cells (the default for fills of few edges) stay within their
+// bound of it.
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "raster/fixed_cells.hpp"
 #include "raster/rect.hpp"
 #include "support/capture.hpp"
 #include "vraster/composite.hpp"
@@ -55,10 +58,13 @@ Affine random_axis_transform(std::mt19937& rng) {
   }
 }
 
-CoverageGrid coverage(const Polylines& lines, FillRule rule, AntiAlias aa, int w, int h, bool shortcut) {
+// shortcut false: the general sweeps, in double cells unless fixed_cells.
+CoverageGrid coverage(const Polylines& lines, FillRule rule, AntiAlias aa, int w, int h, bool shortcut,
+                      bool fixed_cells = false) {
   CoverageGrid grid(w, h);
   Rasterizer r;
   r.set_rect_shortcut(shortcut);
+  r.set_fixed_cells(fixed_cells);
   r.fill(lines, rule, aa, w, h, grid);
   EXPECT_TRUE(grid.violations().empty()) << grid.violations().front();
   return grid;
@@ -83,11 +89,13 @@ TEST(RectFill, MatchesTheSweepsBitForBitOnRandomRectangles) {
       for (FillRule rule : kRules) {
         const CoverageGrid fast = coverage(lines, rule, aa, w, h, true);
         const CoverageGrid sweep = coverage(lines, rule, aa, w, h, false);
+        const CoverageGrid fixed = coverage(lines, rule, aa, w, h, false, true);
         for (int y = 0; y < h; ++y) {
           for (int x = 0; x < w; ++x) {
             ASSERT_EQ(fast.at(x, y), sweep.at(x, y))
                 << "iteration " << it << " " << to_string(aa) << " " << to_string(rule) << " pixel " << x << "," << y
                 << " rect " << x0 << "," << y0 << " - " << x1 << "," << y1;
+            ASSERT_NEAR(fast.at(x, y), fixed.at(x, y), detail::kFixedCellsError) << "iteration " << it;
           }
         }
         ++compared;
@@ -116,6 +124,7 @@ void expect_same_pixels(std::uint32_t seed) {
       std::fill(image->data.begin(), image->data.end(), static_cast<T>(BasicImage<T>::kMax / 3));
       Renderer renderer;
       renderer.rasterizer().set_rect_shortcut(image == &fast);
+      renderer.rasterizer().set_fixed_cells(false);
       Compositor<T> comp;
       comp.set(ImageView<T>::of(*image), Paint::solid(color), Affine{}, CompositeOp::SourceOver, 0.9f);
       FillOptions options;

@@ -130,13 +130,15 @@ DenseKind dense_kind(const std::vector<Edge>& edges, int y_min, int y_max, int c
 /// The buffers of a dense sweep (kept from fill to fill; the block stays zero between fills).
 struct DenseScratch {
   std::vector<double>& block;       // rows x columns of cells
+  std::vector<std::int32_t>& fixed_block;  // the same in fixed point (fixed_cells.hpp), for fills of few edges
   std::vector<int>& notes;          // per row: first and last cell written (and pieces' ranges: DenseRows)
   std::vector<CoverageRow>& batch;  // rows handed to the sink together
   std::vector<float>& coverage;     // their coverage, a slot per row
 };
 /// The dense sweep of rows [y_from, y_to) of `edges` (cells [x_base, x_base + columns)).
+/// fixed_cells: fills of few edges in fixed-point cells (fixed_cells.hpp), as the row sweep's rows of few edges.
 void sweep_dense_range(FillRule rule, DenseKind kind, const std::vector<Edge>& edges, int y_from, int y_to,
-                       int x_base, int columns, int width, DenseScratch s, CoverageSink& sink);
+                       int x_base, int columns, int width, bool fixed_cells, DenseScratch s, CoverageSink& sink);
 
 /// Crossings of `edges` (clipped to rows [0, height)) inside pixel rows: per row, the pairs of edges whose x order
 /// at the row's top (ties by x at the bottom) differs from their order at its bottom. Counting stops once it
@@ -267,6 +269,7 @@ class RasterizerImpl {
     std::vector<CoverageRow> batch;       // analytic and queued dense sweeps: rows handed to the sink together
     std::vector<float> batch_coverage;    // analytic sweep: the narrow rows' coverage (queued dense: `coverage`)
     std::vector<double> dense_block;      // queued dense fills: rows x columns of cells, zero between fills
+    std::vector<std::int32_t> dense_fixed_block;  // the same in fixed point, for fills of few edges
     std::vector<int> dense_notes;         // queued dense fills: what each row's pieces wrote (DenseRows)
     BucketScratch bucket;                 // building queued fills
   };
@@ -291,10 +294,12 @@ class RasterizerImpl {
   /// fixed_cells: the row sweep's rows of few edges in fixed point (analytic mode, unless turned off).
   void sweep_analytic(FillRule rule, int width, bool fixed_cells, CoverageSink& sink);
   void sweep_sampled(FillRule rule, AntiAlias aa, int width, CoverageSink& sink);
-  bool sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink);
-  [[gnu::noinline]] void sweep_ranged(FillRule rule, int width, int x_base, int columns, CoverageSink& sink);
+  /// fixed_cells: fills of few edges in fixed point (sweep_dense_range).
+  bool sweep_dense(FillRule rule, int width, int x_base, int columns, bool fixed_cells, CoverageSink& sink);
+  [[gnu::noinline]] void sweep_ranged(FillRule rule, int width, int x_base, int columns, bool fixed_cells,
+                                      CoverageSink& sink);
   /// The dense sweep of rows [y_from, y_to) of a queued fill, on one thread.
-  static void sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s);
+  void sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s) const;
   void bucket_edges(bool by_sample_row) {
     detail::bucket_edges(edges_, y_min_, y_max_, by_sample_row, order_, bucket_start_, bands_[0].bucket);
   }
@@ -313,6 +318,7 @@ class RasterizerImpl {
   std::vector<float> row_coverage_;          // dense sweep: coverage handed to the sink, a slot per batched row
   std::vector<CoverageRow> dense_batch_;     // dense sweep: the rows of a batch
   std::vector<double> dense_block_;          // small paths: rows x columns of cells, zero between fills
+  std::vector<std::int32_t> dense_fixed_block_;  // the same in fixed point, for fills of few edges
   std::vector<int> dense_notes_;             // dense fills: what each row's pieces wrote (DenseRows)
   std::vector<float> rect_coverage_;         // fill_rect: the coverage of up to three rows
   std::vector<double> rect_cells_;           // fill_rect: analytic cells of one row, zero between fills

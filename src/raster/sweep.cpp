@@ -322,19 +322,20 @@ template <FillRule R, bool kAvx2>
   });
 }
 
-// resolve_cluster for fixed-point cells (fixed_cells.hpp): cells lo .. hi swept from `sum` (blocks of eight, which
-// read up to seven cells past hi: untouched, zero), blended straight into the target's pixels where there is one,
-// else one compositor call for the nonzero pixels; then the stretch up to gap_end as one span.
+// resolve_cluster for fixed-point cells (fixed_cells.hpp): cells lo .. hi (relative to x_base; cells is cell
+// x_base) swept from `sum` (blocks of eight, which read up to seven cells past hi: untouched, zero), blended straight
+// into the target's pixels where there is one, else one compositor call for the nonzero pixels; then the stretch up
+// to gap_end as one span.
 template <FillRule R, bool kAvx2>
-[[gnu::always_inline]] inline void resolve_fixed_cluster(int y, int width, int lo, int hi, int gap_end,
+[[gnu::always_inline]] inline void resolve_fixed_cluster(int y, int width, int x_base, int lo, int hi, int gap_end,
                                                          std::int32_t* cells, float* cov, std::int32_t& sum,
                                                          const SolidOver8* target, CoverageSink& sink) {
-  const int visible = std::max(std::min(hi + 1, width) - lo, 0);
+  const int visible = std::max(std::min(hi + 1, width - x_base) - lo, 0);
   bool blended = false;
 #ifdef VRASTER_HAVE_AVX2_KERNELS
   if constexpr (kAvx2) {
     if (target) {
-      auto* const px = reinterpret_cast<std::uint32_t*>(target->pixels + y * target->stride) + lo;
+      auto* const px = reinterpret_cast<std::uint32_t*>(target->pixels + y * target->stride) + x_base + lo;
       detail::blend_fixed_cells_avx2<R>(cells + lo, hi - lo + 1, visible, sum, px, target->color);
       blended = true;
     }
@@ -345,14 +346,14 @@ template <FillRule R, bool kAvx2>
     int a = 0, b = visible;
     detail::trim_zeros(cov, a, b);
     if (b - a == 1) {
-      sink.span(y, lo + a, lo + b, cov[a]);
+      sink.span(y, x_base + lo + a, x_base + lo + b, cov[a]);
     } else if (b > a) {
-      sink.row(y, lo + a, lo + b, cov + a);
+      sink.row(y, x_base + lo + a, x_base + lo + b, cov + a);
     }
   }
   if (gap_end > hi + 1) {
     const float c = detail::fixed_coverage<R>(sum);
-    if (c > 0) sink.span(y, hi + 1, gap_end, c);
+    if (c > 0) sink.span(y, x_base + hi + 1, x_base + gap_end, c);
   }
 }
 
@@ -380,11 +381,11 @@ template <FillRule R, bool kAvx2>
   }
   batch.hand_over();
   if (narrow || whole) {
-    resolve_fixed_cluster<R, kAvx2>(y, width, x_lo, x_hi, width, fixed, cov, sum, narrow ? target : nullptr, sink);
+    resolve_fixed_cluster<R, kAvx2>(y, width, 0, x_lo, x_hi, width, fixed, cov, sum, narrow ? target : nullptr, sink);
     return;
   }
   for_each_cluster(width, ranges, clusters, [&](int lo, int hi, int gap_end) {
-    resolve_fixed_cluster<R, kAvx2>(y, width, lo, hi, gap_end, fixed, cov, sum, target, sink);
+    resolve_fixed_cluster<R, kAvx2>(y, width, 0, lo, hi, gap_end, fixed, cov, sum, target, sink);
   });
 }
 
@@ -577,9 +578,17 @@ template <FillRule R>
 // Narrow blocks sweep whole rows: there is little outside to skip, and noting it would cost more.
 constexpr int kTrimmedDenseColumns = 24;
 
-// A dense block's rows are this many cells apart (columns rounded up to whole blocks of four): a narrow block's rows
-// are swept in whole blocks, each row's own (the cells past `columns` stay zero).
-constexpr int dense_stride(int columns) { return (columns + 3) & ~3; }
+// A dense block's rows are this many cells apart (columns rounded up to whole blocks of the sweep: four double cells,
+// eight fixed-point ones): a row is swept in whole blocks from a block's first cell, each row's own (the cells past
+// `columns` stay zero).
+template <class Cell>
+constexpr int dense_block_cells() {
+  return std::is_same_v<Cell, std::int32_t> ? detail::kFixedBlock : 4;
+}
+template <class Cell = double>
+constexpr int dense_stride(int columns) {
+  return (columns + dense_block_cells<Cell>() - 1) & ~(dense_block_cells<Cell>() - 1);
+}
 static_assert(kTrimmedDenseColumns <= 32, "a narrow block's row fits sweep_narrow_row's nonzero mask");
 
 // What a dense block notes of each row while its edges walk: nothing (Whole: narrow blocks sweep every row whole),
@@ -616,9 +625,11 @@ constexpr int kWalkMinRows = 3;
 // computed as Edge::x_at computes it (no FMA; minpd / maxpd in the operand order of leave_row_avx2), the four pieces
 // split at once (split4) and added row by row, so every cell gets the numbers and the order of the scalar walk.
 // Rows from r1 on are left alone.
-template <DenseRows kMode>
+// Into fixed-point cells (Cell std::int32_t): the split's rounded shares, as add_pieces_avx2 adds them.
+template <DenseRows kMode, class Cell>
 [[gnu::target("avx2")]] inline void walk_edge_avx2(const Edge& e, int r0, int r1, int y_min, double shift,
-                                                   double* block, int stride, int* notes) {
+                                                   Cell* block, int stride, int* notes) {
+  constexpr bool kFixed = std::is_same_v<Cell, std::int32_t>;
   double ya = std::max(e.y0, static_cast<double>(r0));
   double xa = (ya == e.y0 ? e.x0 : e.x_at(ya)) - shift;
   const __m256d y0 = _mm256_set1_pd(e.y0), y1 = _mm256_set1_pd(e.y1), x0 = _mm256_set1_pd(e.x0);
@@ -636,13 +647,24 @@ template <DenseRows kMode>
     const __m256d ya4 = _mm256_blend_pd(_mm256_permute4x64_pd(yb, 0x90), _mm256_set1_pd(ya), 0x1);
     const __m256d xa4 = _mm256_blend_pd(_mm256_permute4x64_pd(xb, 0x90), _mm256_set1_pd(xa), 0x1);
     const __m256d h = _mm256_mul_pd(_mm256_sub_pd(yb, ya4), winding);
-    const detail::SplitLanes split(xa4, xb, h);
+    const detail::SplitLanes<kFixed> split(xa4, xb, h);
     const __m256i in_rows = _mm256_cvtepi32_epi64(_mm_cmpgt_epi32(_mm_set1_epi32(r1 - y), lanes));
     const int pieces =
         _mm256_movemask_pd(_mm256_and_pd(_mm256_cmp_pd(yb, ya4, _CMP_GT_OQ), _mm256_castsi256_pd(in_rows)));
     for (int i = 0; i < 4; ++i) {
       if (!(pieces >> i & 1)) continue;
-      split.add(i, block + static_cast<std::size_t>(y + i - y_min) * stride);
+      Cell* const row = block + static_cast<std::size_t>(y + i - y_min) * stride;
+      if constexpr (kFixed) {
+        if (split.past[i] > 2) {
+          detail::accumulate_long_piece_fixed(row, std::min(split.xa[i], split.xb[i]),
+                                              std::max(split.xa[i], split.xb[i]), split.h[i], split.first[i],
+                                              split.first[i] + split.past[i]);
+        } else {
+          for (int c = 0; c < 4; ++c) row[split.first[i] + c] += split.fixed[c][i];
+        }
+      } else {
+        split.add(i, row);
+      }
       if constexpr (kMode != DenseRows::Whole) {
         note_piece<kMode>(notes + row_notes(kMode) * (y + i - y_min), split.first[i],
                           split.first[i] + split.past[i] + 1);
@@ -655,14 +677,16 @@ template <DenseRows kMode>
 #endif
 
 // The clusters of a Ranged row (notes `row_notes`) whose pieces lie at least detail::kMergeGap cells apart: their
-// first and last cells in lo and hi (relative to x_base), each cluster starting on a block of four so that the
-// narrow sweep's blocks stay inside the row (the cells before a piece in its block are untouched: zero). Returns how
+// first and last cells in lo and hi (relative to x_base), each cluster starting on a block of the sweep (kBlock cells)
+// so that its blocks stay inside the row (the cells before a piece in its block are untouched: zero). Returns how
 // many; 0 for a row to sweep between its first and last cell (one cluster, a narrow row, or more pieces than noted).
+template <int kBlock>
 [[gnu::always_inline]] inline int ranged_clusters(const int* row_notes, int (&lo)[kRowRanges], int (&hi)[kRowRanges]) {
+  static_assert(detail::kMergeGap >= kBlock - 1, "a cluster's last block must not reach the next cluster's cells");
   const int count = row_notes[2];
   if (count < 2 || count > kRowRanges || row_notes[1] - row_notes[0] < detail::kNarrowRowCells) return 0;
   for (int k = 0; k < count; ++k) {  // sorted by first cell, then last
-    const int l = row_notes[3 + 2 * k] & ~3, h = row_notes[4 + 2 * k];
+    const int l = row_notes[3 + 2 * k] & ~(kBlock - 1), h = row_notes[4 + 2 * k];
     int j = k;
     for (; j > 0 && (lo[j - 1] > l || (lo[j - 1] == l && hi[j - 1] > h)); --j) {
       lo[j] = lo[j - 1];
@@ -684,55 +708,13 @@ template <DenseRows kMode>
   return clusters > 1 ? clusters : 0;
 }
 
-// kAvx2: compiled into an AVX2 function (sweep_dense_rows_avx2), whose narrow blocks' rows take sweep_narrow_row's
-// AVX2 blocks and its mask of nonzero coverage (no trimming loops).
+// The rows of a dense block in double cells, once its edges have walked.
 template <FillRule R, DenseRows kMode, bool kAvx2>
-[[gnu::always_inline]] inline void sweep_dense_block(const std::vector<Edge>& edges, int y_min, int y_max, int x_base,
-                                                     int columns, int width, double* block, int* notes,
-                                                     const detail::RowBatchBuffers& out, CoverageSink& sink) {
-  const int stride = dense_stride(columns);
-  RowBatch batch(sink, out, static_cast<std::size_t>(stride));
-  const double shift = x_base;
+[[gnu::always_inline]] inline void resolve_dense_rows(int y_min, int y_max, int x_base, int columns, int width,
+                                                      double* block, const int* notes, RowBatch& batch,
+                                                      const SolidOver8* target, CoverageSink& sink) {
   constexpr int kNotes = row_notes(kMode);
-  // Every row blended straight into the sink's pixels where it allows (resolve_cluster): small shapes 5-10 % faster,
-  // and no loss on wide rows here (docs/performance.md).
-  SolidOver8 pixels;
-  const SolidOver8* const target = kAvx2 ? solid_target(sink, pixels, width, y_max) : nullptr;
-  for (int r = 0; kMode != DenseRows::Whole && r < y_max - y_min; ++r) {
-    notes[kNotes * r] = columns;
-    notes[kNotes * r + 1] = -1;
-    if constexpr (kMode == DenseRows::Ranged) notes[kNotes * r + 2] = 0;
-  }
-  for (const Edge& e : edges) {
-    const int r0 = std::max(static_cast<int>(std::floor(e.y0)), y_min);
-    const int r1 = std::min(static_cast<int>(std::ceil(e.y1)), y_max);
-    if (r0 >= r1) continue;  // outside this strip or band
-#ifdef VRASTER_HAVE_AVX2_KERNELS
-    if constexpr (kAvx2) {
-      if (r1 - r0 >= kWalkMinRows && e.x0 != e.x1) {
-        walk_edge_avx2<kMode>(e, r0, r1, y_min, shift, block, stride, notes);
-        continue;
-      }
-    }
-#endif
-    // The edge's piece in row y runs from (ya, xa) to (yb, xb): ya = max(y0, y), yb = min(y1, y + 1), x at each
-    // (x0, x1 at the ends). Below the first row ya is y, the previous row's yb: its x is carried, not computed again.
-    double ya = std::max(e.y0, static_cast<double>(r0));
-    double xa = (ya == e.y0 ? e.x0 : e.x_at(ya)) - shift;
-    for (int y = r0; y < r1; ++y) {
-      const double yb = std::min(e.y1, y + 1.0);
-      const double xb = (yb == e.y1 ? e.x1 : e.x_at(yb)) - shift;
-      if (yb > ya) {
-        accumulate_piece(block + static_cast<std::size_t>(y - y_min) * stride, xa, xb, (yb - ya) * e.winding);
-        if constexpr (kMode != DenseRows::Whole) {
-          note_piece<kMode>(notes + kNotes * (y - y_min), static_cast<int>(std::min(xa, xb)),
-                              static_cast<int>(std::max(xa, xb)) + 1);
-        }
-      }
-      ya = yb;
-      xa = xb;
-    }
-  }
+  const int stride = dense_stride(columns);
   const int visible = std::min(columns, width - x_base);  // the last cells may lie at or right of the image edge
   for (int y = y_min; y < y_max; ++y) {
     double* row = block + static_cast<std::size_t>(y - y_min) * stride;
@@ -744,7 +726,7 @@ template <FillRule R, DenseRows kMode, bool kAvx2>
       if (row_extent[1] < 0) continue;  // no piece in this row: coverage 0 all along
       if constexpr (kMode == DenseRows::Ranged) {
         int lo[kRowRanges], hi[kRowRanges];
-        if (const int clusters = ranged_clusters(row_extent, lo, hi)) {
+        if (const int clusters = ranged_clusters<4>(row_extent, lo, hi)) {
           // Cluster by cluster with spans between them, as the row sweep's sparse rows (resolve_clusters).
           batch.hand_over();  // the rows before go first
           double sum = 0;
@@ -813,43 +795,165 @@ template <FillRule R, DenseRows kMode, bool kAvx2>
   batch.hand_over();
 }
 
-template <FillRule R, DenseRows kMode>
+// The rows of a dense block in fixed-point cells (Trimmed or Ranged), once its edges have walked: as the double
+// cells' rows below, with the integer sweeps (resolve_fixed_cluster), from blocks of eight.
+template <FillRule R, DenseRows kMode, bool kAvx2>
+[[gnu::always_inline]] inline void resolve_dense_rows_fixed(int y_min, int y_max, int x_base, int columns, int width,
+                                                            std::int32_t* block, const int* notes, RowBatch& batch,
+                                                            const SolidOver8* target, CoverageSink& sink) {
+  static_assert(kMode != DenseRows::Whole, "narrow blocks keep double cells");
+  constexpr int kNotes = row_notes(kMode);
+  const int stride = dense_stride<std::int32_t>(columns);
+  const int row_end = width - x_base;  // the image's right edge, in cells from x_base
+  for (int y = y_min; y < y_max; ++y) {
+    std::int32_t* const row = block + static_cast<std::size_t>(y - y_min) * stride;
+    const int* const row_extent = notes + kNotes * (y - y_min);
+    if (row_extent[1] < 0) continue;  // no piece in this row: coverage 0 all along
+    std::int32_t sum = 0;
+    if constexpr (kMode == DenseRows::Ranged) {
+      int lo[kRowRanges], hi[kRowRanges];
+      if (const int clusters = ranged_clusters<detail::kFixedBlock>(row_extent, lo, hi)) {
+        batch.hand_over();  // the rows before go first
+        for (int k = 0; k < clusters; ++k) {
+          const int gap_end = std::min(k + 1 < clusters ? lo[k + 1] : row_end, row_end);
+          resolve_fixed_cluster<R, kAvx2>(y, width, x_base, lo[k], std::min(hi[k], columns - 1), gap_end, row,
+                                          batch.slot(), sum, target, sink);
+        }
+        continue;
+      }
+    }
+    const int from = row_extent[0] & ~(detail::kFixedBlock - 1), last = std::min(row_extent[1], columns - 1);
+    if (target) {
+      resolve_fixed_cluster<R, kAvx2>(y, width, x_base, from, last, row_end, row, batch.slot(), sum, target, sink);
+      continue;
+    }
+    // Without the sink's pixels: the row's coverage in the batch, and a span right of its last cell.
+    float* const cov = batch.slot();
+    detail::sweep_fixed_cells<R, kAvx2>(row + from, cov + from, last - from + 1, sum);
+    int a = from, b = std::max(std::min(last + 1, row_end), from);
+    detail::trim_zeros(cov, a, b);
+    if (b > a) batch.add(y, x_base + a, x_base + b, cov + a);
+    const float c = detail::fixed_coverage<R>(sum);
+    if (c > 0 && last + 1 < row_end) {
+      batch.hand_over();
+      sink.span(y, x_base + last + 1, width, c);
+    }
+  }
+  batch.hand_over();
+}
+
+// kAvx2: compiled into an AVX2 function (sweep_dense_rows_avx2), whose narrow blocks' rows take sweep_narrow_row's
+// AVX2 blocks and its mask of nonzero coverage (no trimming loops). Cell: double, or std::int32_t for fixed-point
+// cells (Trimmed and Ranged blocks of fills of few edges, fixed_cells.hpp).
+template <FillRule R, DenseRows kMode, bool kAvx2, class Cell>
+[[gnu::always_inline]] inline void sweep_dense_block(const std::vector<Edge>& edges, int y_min, int y_max, int x_base,
+                                                     int columns, int width, Cell* block, int* notes,
+                                                     const detail::RowBatchBuffers& out, CoverageSink& sink) {
+  constexpr bool kFixed = std::is_same_v<Cell, std::int32_t>;
+  const int stride = dense_stride<Cell>(columns);
+  RowBatch batch(sink, out, static_cast<std::size_t>(stride));
+  const double shift = x_base;
+  constexpr int kNotes = row_notes(kMode);
+  // Every row blended straight into the sink's pixels where it allows (resolve_cluster): small shapes 5-10 % faster,
+  // and no loss on wide rows here (docs/performance.md).
+  SolidOver8 pixels;
+  const SolidOver8* const target = kAvx2 ? solid_target(sink, pixels, width, y_max) : nullptr;
+  for (int r = 0; kMode != DenseRows::Whole && r < y_max - y_min; ++r) {
+    notes[kNotes * r] = columns;
+    notes[kNotes * r + 1] = -1;
+    if constexpr (kMode == DenseRows::Ranged) notes[kNotes * r + 2] = 0;
+  }
+  for (const Edge& e : edges) {
+    const int r0 = std::max(static_cast<int>(std::floor(e.y0)), y_min);
+    const int r1 = std::min(static_cast<int>(std::ceil(e.y1)), y_max);
+    if (r0 >= r1) continue;  // outside this strip or band
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+    if constexpr (kAvx2) {
+      if (r1 - r0 >= kWalkMinRows && e.x0 != e.x1) {
+        walk_edge_avx2<kMode, Cell>(e, r0, r1, y_min, shift, block, stride, notes);
+        continue;
+      }
+    }
+#endif
+    // The edge's piece in row y runs from (ya, xa) to (yb, xb): ya = max(y0, y), yb = min(y1, y + 1), x at each
+    // (x0, x1 at the ends). Below the first row ya is y, the previous row's yb: its x is carried, not computed again.
+    double ya = std::max(e.y0, static_cast<double>(r0));
+    double xa = (ya == e.y0 ? e.x0 : e.x_at(ya)) - shift;
+    for (int y = r0; y < r1; ++y) {
+      const double yb = std::min(e.y1, y + 1.0);
+      const double xb = (yb == e.y1 ? e.x1 : e.x_at(yb)) - shift;
+      if (yb > ya) {
+        Cell* const row = block + static_cast<std::size_t>(y - y_min) * stride;
+        if constexpr (kFixed) {
+          detail::accumulate_piece_fixed(row, xa, xb, (yb - ya) * e.winding);
+        } else {
+          accumulate_piece(row, xa, xb, (yb - ya) * e.winding);
+        }
+        if constexpr (kMode != DenseRows::Whole) {
+          note_piece<kMode>(notes + kNotes * (y - y_min), static_cast<int>(std::min(xa, xb)),
+                              static_cast<int>(std::max(xa, xb)) + 1);
+        }
+      }
+      ya = yb;
+      xa = xb;
+    }
+  }
+  if constexpr (kFixed) {
+    resolve_dense_rows_fixed<R, kMode, kAvx2>(y_min, y_max, x_base, columns, width, block, notes, batch, target, sink);
+  } else {
+    resolve_dense_rows<R, kMode, kAvx2>(y_min, y_max, x_base, columns, width, block, notes, batch, target, sink);
+  }
+}
+
+template <FillRule R, DenseRows kMode, class Cell>
 void sweep_dense_rows_portable(const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns,
-                               int width, double* block, int* notes, const detail::RowBatchBuffers& out,
+                               int width, Cell* block, int* notes, const detail::RowBatchBuffers& out,
                                CoverageSink& sink) {
   sweep_dense_block<R, kMode, false>(edges, y_min, y_max, x_base, columns, width, block, notes, out, sink);
 }
 #ifdef VRASTER_HAVE_AVX2_KERNELS
-template <FillRule R, DenseRows kMode>
+template <FillRule R, DenseRows kMode, class Cell>
 [[gnu::target("avx2")]] void sweep_dense_rows_avx2(const std::vector<Edge>& edges, int y_min, int y_max, int x_base,
-                                                   int columns, int width, double* block, int* notes,
+                                                   int columns, int width, Cell* block, int* notes,
                                                    const detail::RowBatchBuffers& out, CoverageSink& sink) {
   sweep_dense_block<R, kMode, true>(edges, y_min, y_max, x_base, columns, width, block, notes, out, sink);
 }
 #endif
 
-template <FillRule R, DenseRows kMode>
+template <FillRule R, DenseRows kMode, class Cell>
 void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns, int width,
-                      double* block, int* notes, const detail::RowBatchBuffers& out, CoverageSink& sink) {
+                      Cell* block, int* notes, const detail::RowBatchBuffers& out, CoverageSink& sink) {
 #ifdef VRASTER_HAVE_AVX2_KERNELS
   if (detail::cpu_has_avx2()) {
-    return sweep_dense_rows_avx2<R, kMode>(edges, y_min, y_max, x_base, columns, width, block, notes,
-                                                        out, sink);
+    return sweep_dense_rows_avx2<R, kMode>(edges, y_min, y_max, x_base, columns, width, block, notes, out, sink);
   }
 #endif
-  sweep_dense_rows_portable<R, kMode>(edges, y_min, y_max, x_base, columns, width, block, notes, out,
-                                                  sink);
+  sweep_dense_rows_portable<R, kMode>(edges, y_min, y_max, x_base, columns, width, block, notes, out, sink);
 }
 
+// The block's mode (dense_rows_mode); fixed-point cells for Trimmed and Ranged blocks only (fixed: a non-null block).
 template <FillRule R>
-void sweep_dense_rows(bool ranged, const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns,
-                      int width, double* block, int* notes, const detail::RowBatchBuffers& out, CoverageSink& sink) {
-  if (ranged) {
-    sweep_dense_rows<R, DenseRows::Ranged>(edges, y_min, y_max, x_base, columns, width, block, notes, out, sink);
-  } else if (columns >= kTrimmedDenseColumns) {
-    sweep_dense_rows<R, DenseRows::Trimmed>(edges, y_min, y_max, x_base, columns, width, block, notes, out, sink);
-  } else {
-    sweep_dense_rows<R, DenseRows::Whole>(edges, y_min, y_max, x_base, columns, width, block, notes, out, sink);
+void sweep_dense_rows(DenseRows mode, const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns,
+                      int width, double* block, std::int32_t* fixed, int* notes, const detail::RowBatchBuffers& out,
+                      CoverageSink& sink) {
+  switch (mode) {
+    case DenseRows::Ranged:
+      if (fixed) {
+        return sweep_dense_rows<R, DenseRows::Ranged>(edges, y_min, y_max, x_base, columns, width, fixed, notes, out,
+                                                      sink);
+      }
+      return sweep_dense_rows<R, DenseRows::Ranged>(edges, y_min, y_max, x_base, columns, width, block, notes, out,
+                                                    sink);
+    case DenseRows::Trimmed:
+      if (fixed) {
+        return sweep_dense_rows<R, DenseRows::Trimmed>(edges, y_min, y_max, x_base, columns, width, fixed, notes,
+                                                       out, sink);
+      }
+      return sweep_dense_rows<R, DenseRows::Trimmed>(edges, y_min, y_max, x_base, columns, width, block, notes, out,
+                                                     sink);
+    case DenseRows::Whole:
+      return sweep_dense_rows<R, DenseRows::Whole>(edges, y_min, y_max, x_base, columns, width, block, notes, out,
+                                                   sink);
   }
 }
 
@@ -945,16 +1049,25 @@ detail::RowBatchBuffers detail::row_batch_buffers(std::vector<CoverageRow>& batc
 // Rows [y_from, y_to) of a dense fill, in strips of at most Rasterizer::kDefaultDenseLimit cells (a thin shape's
 // box may be the image's, and the block must stay in the cache). Each row takes the pieces of the edges inside it (in
 // edge order) and a running sum of its own, so strips, like bands, give the bits one block would.
+// Fixed-point cells (fixed_cells) for the wide blocks (Trimmed, Ranged) of fills of at most kFixedRowEdges edges, whose
+// rows have at most that many pieces: the row sweep's bound holds for them. Narrow blocks (glyphs, micro shapes)
+// keep double cells: their sums are short, and their areas stay exact to the double's round-off.
 void detail::sweep_dense_range(FillRule rule, DenseKind kind, const std::vector<Edge>& edges, int y_from, int y_to,
-                               int x_base, int columns, int width, DenseScratch s, CoverageSink& sink) {
-  const int stride = dense_stride(columns);
+                               int x_base, int columns, int width, bool fixed_cells, DenseScratch s,
+                               CoverageSink& sink) {
+  const DenseRows mode = kind == DenseKind::Ranged             ? DenseRows::Ranged
+                         : columns >= kTrimmedDenseColumns ? DenseRows::Trimmed
+                                                             : DenseRows::Whole;
+  const bool fixed = fixed_cells && mode != DenseRows::Whole && edges.size() <= detail::kFixedRowEdges;
+  const int stride = fixed ? dense_stride<std::int32_t>(columns) : dense_stride(columns);
   const int strip_rows =
       static_cast<int>(std::clamp<std::int64_t>(Rasterizer::kDefaultDenseLimit / stride, 1, y_to - y_from));
   // (plus kPieceSlack: a piece split without branches adds + 0 to up to 3 cells past the cell after its last, past
   // the block's last row too)
   const std::size_t cells =
       static_cast<std::size_t>(stride) * static_cast<std::size_t>(strip_rows) + detail::kPieceSlack;
-  if (s.block.size() < cells) s.block.assign(cells, 0.0);  // zero; every sweep leaves it zero
+  if (fixed && s.fixed_block.size() < cells) s.fixed_block.assign(cells, 0);  // zero; every sweep leaves it zero
+  if (!fixed && s.block.size() < cells) s.block.assign(cells, 0.0);
   const auto notes = static_cast<std::size_t>(row_notes(DenseRows::Ranged)) * static_cast<std::size_t>(strip_rows);
   if (s.notes.size() < notes) s.notes.resize(notes);
   const RowBatchBuffers out = row_batch_buffers(s.batch, s.coverage, strip_rows, stride);
@@ -962,20 +1075,22 @@ void detail::sweep_dense_range(FillRule rule, DenseKind kind, const std::vector<
   if (strip_rows == y_to - y_from) sink.expect(y_from, y_to, x_base, x_base + columns);
   with_rule(rule, [&](auto r) {
     for (int y = y_from; y < y_to; y += strip_rows) {
-      sweep_dense_rows<decltype(r)::value>(kind == DenseKind::Ranged, edges, y, std::min(y + strip_rows, y_to),
-                                           x_base, columns, width, s.block.data(), s.notes.data(), out, sink);
+      sweep_dense_rows<decltype(r)::value>(mode, edges, y, std::min(y + strip_rows, y_to), x_base, columns, width,
+                                           s.block.data(), fixed ? s.fixed_block.data() : nullptr, s.notes.data(),
+                                           out, sink);
     }
   });
 }
 
-bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, int columns, CoverageSink& sink) {
+bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, int columns, bool fixed_cells,
+                                         CoverageSink& sink) {
   const DenseKind kind = dense_kind(edges_, y_min_, y_max_, columns, dense_limit_);
   if (kind == DenseKind::None) return false;
   if (kind == DenseKind::Ranged) {
-    sweep_ranged(rule, width, x_base, columns, sink);
+    sweep_ranged(rule, width, x_base, columns, fixed_cells, sink);
   } else {
-    sweep_dense_range(rule, kind, edges_, y_min_, y_max_, x_base, columns, width,
-                      {dense_block_, dense_notes_, dense_batch_, row_coverage_}, sink);
+    sweep_dense_range(rule, kind, edges_, y_min_, y_max_, x_base, columns, width, fixed_cells,
+                      {dense_block_, dense_fixed_block_, dense_notes_, dense_batch_, row_coverage_}, sink);
   }
   return true;
 }
@@ -983,18 +1098,19 @@ bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, i
 // A large fill with its rows' pieces noted: in bands with threads, as the row sweep (rows are swept one by one from
 // the cells of their own pieces, so bands give the bits of one sweep). Out of line: small fills come by sweep_dense
 // by the thousand.
-void detail::RasterizerImpl::sweep_ranged(FillRule rule, int width, int x_base, int columns, CoverageSink& sink) {
+void detail::RasterizerImpl::sweep_ranged(FillRule rule, int width, int x_base, int columns, bool fixed_cells,
+                                          CoverageSink& sink) {
   in_bands(band_count(sink), [&](int y0, int y1, BandScratch& s) {
-    sweep_dense_range(rule, DenseKind::Ranged, edges_, y0, y1, x_base, columns, width,
-                      {s.dense_block, s.dense_notes, s.batch, s.coverage}, sink);
+    sweep_dense_range(rule, DenseKind::Ranged, edges_, y0, y1, x_base, columns, width, fixed_cells,
+                      {s.dense_block, s.dense_fixed_block, s.dense_notes, s.batch, s.coverage}, sink);
   });
 }
 
 // Rows [y_from, y_to) of a queued dense fill.
-void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s) {
+void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s) const {
   const DenseKind kind = fill.kind == QueuedFill::Kind::Ranged ? DenseKind::Ranged : DenseKind::Dense;
-  sweep_dense_range(fill.rule, kind, fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width,
-                    {s.dense_block, s.dense_notes, s.batch, s.coverage}, *fill.sink);
+  sweep_dense_range(fill.rule, kind, fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width, fixed_cells_,
+                    {s.dense_block, s.dense_fixed_block, s.dense_notes, s.batch, s.coverage}, *fill.sink);
 }
 
 // The columns the edges reach: cells [x_base, x_base + columns) hold every cell an edge can write (the last edge's
@@ -1096,7 +1212,7 @@ void detail::RasterizerImpl::set_threads(int threads) {
 void detail::RasterizerImpl::sweep_analytic(FillRule rule, int width, bool fixed_cells, CoverageSink& sink) {
   int x_base = 0, columns = 0;
   edge_columns(edges_, x_base, columns);
-  if (sweep_dense(rule, width, x_base, columns, sink)) return;
+  if (sweep_dense(rule, width, x_base, columns, fixed_cells, sink)) return;
   bucket_edges(false);
   in_bands(band_count(sink), [&](int y0, int y1, BandScratch& s) {
     sweep_analytic_band(table(), rule, width, y0, y1, fixed_cells, s, sink);
