@@ -532,6 +532,31 @@ TEST(PathBounds, CubicBulgingBeyondItsEndpointsMatchesDenseSampling) {
   }
 }
 
+// control_bounds takes the points two at a time (src/geometry/point_bounds.hpp): every count of points, odd and even,
+// the extremes anywhere among them, gives the box of a one-by-one pass.
+TEST(PathBounds, ControlBoundsAreTheBoxOfEveryPointForEveryCount) {
+  std::mt19937 rng(31);
+  std::uniform_real_distribution<double> coord(-1e3, 1e3);
+  for (int n = 1; n <= 40; ++n) {
+    for (int trial = 0; trial < 20; ++trial) {
+      Path p;
+      Rect want{};
+      for (int i = 0; i < n; ++i) {
+        const Point q{coord(rng), coord(rng)};
+        if (i == 0) {
+          p.move_to(q);
+          want = Rect::from_point(q);
+        } else {
+          p.line_to(q);
+        }
+        want.include(q);
+      }
+      const Rect got = p.control_bounds();
+      ASSERT_TRUE(got.x0 == want.x0 && got.y0 == want.y0 && got.x1 == want.x1 && got.y1 == want.y1) << n;
+    }
+  }
+}
+
 TEST(PathBounds, EmptyPathHasZeroBounds) {
   const Path p;
   const Rect b = p.bounds(), cb = p.control_bounds();

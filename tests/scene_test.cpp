@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <functional>
+#include <memory>
 #include <random>
 #include <string>
 
@@ -187,6 +188,99 @@ TEST(Scene, ReplayingARecordingDrawsExactlyWhatDrawingDirectlyDraws) {
     const Draw draw = [seed](Canvas& c) { random_scene(c, seed); };
     const Scene scene = record(64, 64, draw);
     EXPECT_EQ(max_difference(direct(64, 64, draw), replayed(scene, nullptr)), 0);
+  }
+}
+
+// A replayed fill copies only the state it draws with (not the paints or the line style: its paint is the
+// command's own). Each state a fill uses, set apart from the others between strokes that set the stroke's state,
+// must replay as drawn: a gradient paint under a transform (the paint is mapped by it), an image pattern (with its
+// own nearest filter, and under a scale), global alpha, an operator, a shadow, the aliased mode and a coarse
+// tolerance on a curve. (The image smoothing and filter of the state are draw_image's, the z order's, the recorded
+// fill rule the command's own: a fill does not draw with them.)
+TEST(Scene, ReplayedFillsDrawWithEveryStateTheyWereRecordedWith) {
+  auto tile = std::make_shared<Image>(4, 4);
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 4; ++x) {
+      std::uint8_t* p = tile->pixel(x, y);
+      p[0] = static_cast<std::uint8_t>(60 * x);
+      p[1] = static_cast<std::uint8_t>(60 * y);
+      p[2] = 90;
+      p[3] = 255;
+    }
+  }
+  const std::vector<std::function<void(Canvas&)>> states = {
+      [](Canvas& c) {
+        Paint g = Paint::linear({0, 0}, {20, 0});
+        g.add_stop(0, Color{1, 0, 0, 1});
+        g.add_stop(1, Color{0, 0, 1, 1});
+        c.set_fill_paint(g);
+        c.translate(7.5, 3.25);
+        c.rotate(0.4);
+      },
+      [&](Canvas& c) {
+        Paint pattern = Paint::pattern(tile);
+        pattern.set_transform(Affine::scale(3.7, 2.3));
+        pattern.set_filter(ImageFilter::Nearest);
+        c.set_fill_paint(pattern);
+      },
+      [&](Canvas& c) {
+        Paint pattern = Paint::pattern(tile);
+        pattern.set_transform(Affine::scale(3.7, 2.3));
+        c.set_fill_paint(pattern);
+        c.scale(1.3, 0.8);
+      },
+      [](Canvas& c) { c.set_global_alpha(0.45); },
+      [](Canvas& c) { c.set_composite(CompositeOp::Xor); },
+      [](Canvas& c) { c.set_shadow(Shadow{Color{0, 0, 0, 0.6f}, 3, 2, 1.5}); },
+      [](Canvas& c) { c.set_anti_alias(AntiAlias::None); },
+      [](Canvas& c) { c.set_tolerance(3); },
+  };
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    SCOPED_TRACE("state " + std::to_string(k));
+    const Draw draw = [&](Canvas& c) {
+      c.set_fill_color(Color{0.2f, 0.6f, 0.3f, 1});
+      c.fill_rect(4, 4, 40, 30);
+      c.save();
+      states[k](c);
+      c.begin_path();
+      c.arc(30, 30, 18, 0, 6.283185307179586);
+      c.fill();
+      c.restore();
+      // A stroke with its own paint and line style between the fills (what a fill's replay leaves as it is).
+      c.set_stroke_color(Color{0.9f, 0.1f, 0.5f, 0.8f});
+      c.set_line_width(3);
+      const double dashes[] = {4, 2};
+      c.set_line_dash(dashes);
+      c.stroke_rect(10, 12, 30, 25);
+      c.fill_rect(40, 40, 15, 15);
+    };
+    const Image want = direct(64, 64, draw);
+    EXPECT_EQ(max_difference(want, replayed(record(64, 64, draw), nullptr)), 0);
+    // (the state makes a difference: the same picture without it differs)
+    const Draw plain = [&](Canvas& c) {
+      c.set_fill_color(Color{0.2f, 0.6f, 0.3f, 1});
+      c.fill_rect(4, 4, 40, 30);
+      c.begin_path();
+      c.arc(30, 30, 18, 0, 6.283185307179586);
+      c.fill();
+    };
+    Image state_only(64, 64), plain_only(64, 64);
+    state_only.clear(Color::transparent());
+    plain_only.clear(Color::transparent());
+    {
+      Canvas c(state_only);
+      c.set_fill_color(Color{0.2f, 0.6f, 0.3f, 1});
+      c.fill_rect(4, 4, 40, 30);
+      states[k](c);
+      c.begin_path();
+      c.arc(30, 30, 18, 0, 6.283185307179586);
+      c.fill();
+    }
+    {
+      Canvas c(plain_only);
+      plain(c);
+    }
+    EXPECT_GT(max_difference(state_only, plain_only), 0);
   }
 }
 

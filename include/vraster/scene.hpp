@@ -25,6 +25,7 @@ namespace vraster {
 
 /// The part of the canvas state a recorded call draws with (everything save() pushes but the clip; the canvas's
 /// own state extends it).
+// (A field added here is also copied by Canvas::draw_scene for fills, src/canvas/record.cpp.)
 struct SceneState {
   Affine transform;
   Paint fill_paint, stroke_paint;

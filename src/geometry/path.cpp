@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "geometry/point_bounds.hpp"
 #include "vraster/error.hpp"
 
 namespace vraster {
@@ -387,9 +388,8 @@ void Path::clear() {
 
 Rect Path::control_bounds() const {
   if (points_.empty()) return {};
-  Rect r = Rect::from_point(points_[0]);
-  for (const Point& p : points_) r.include(p);
-  return r;
+  const detail::PointBounds b = detail::point_bounds(points_);  // (a path's points are finite)
+  return {b.x_lo, b.y_lo, b.x_hi, b.y_hi};
 }
 
 Rect Path::bounds() const {

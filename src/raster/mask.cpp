@@ -16,7 +16,7 @@
 #endif
 
 #include "raster/cells.hpp"
-#include "raster/point_bounds.hpp"
+#include "geometry/point_bounds.hpp"
 #include "vraster/error.hpp"
 #include "raster/rasterizer_p.hpp"
 #include "vraster/raster.hpp"

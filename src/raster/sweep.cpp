@@ -16,7 +16,7 @@
 #include "raster/boundary.hpp"
 #include "raster/cells.hpp"
 #include "raster/fixed_cells.hpp"
-#include "raster/point_bounds.hpp"
+#include "geometry/point_bounds.hpp"
 #include "raster/supersample.hpp"
 #include "raster/unit_winding.hpp"
 #include "raster/rasterizer_p.hpp"

@@ -14,7 +14,8 @@
 namespace vraster::detail {
 
 // The box of the points, and whether they are all finite (the box means nothing when they are not): the glyph mask's
-// rows and whether its points lie inside it (mask.cpp), and the bound on a small fill's work (sweep.cpp). With SSE2,
+// rows and whether its points lie inside it (mask.cpp), the bound on a small fill's work (sweep.cpp), and
+// Path::control_bounds (the canvas asks it twice per fill: its box, then flatten's clip test). With SSE2,
 // an [x, y] pair at a time with two sets of running bounds: one minimum and maximum after another per point made
 // chains of dependent instructions that took a tenth of a small glyph's time (and 1.5 % of a frame of small
 // polygons on two threads).
