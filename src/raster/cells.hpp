@@ -348,7 +348,9 @@ struct Split4 {
 template <bool kFixed = false>
 struct SplitLanes {
   alignas(32) double xa[4], xb[4], h[4], add0[4], add1[4], then1[4], add2[4], then2[4], add3[4];
-  alignas(16) std::int32_t first[4], past[4], fixed[4][4];
+  alignas(16) std::int32_t first[4], past[4];
+  // kFixed: lane i's four shares, cells first .. first + 3 (one 16-byte addition a piece).
+  alignas(16) std::int32_t fixed[4][4];
   [[gnu::target("avx2"), gnu::always_inline]] SplitLanes(__m256d from_x, __m256d to_x, __m256d height) {
     const Split4 p = split4(from_x, to_x, height);
     _mm256_store_pd(xa, from_x);
@@ -359,10 +361,14 @@ struct SplitLanes {
       const __m256d c0 = p.add0, c1 = _mm256_add_pd(_mm256_add_pd(c0, p.add1), p.then1);
       const __m256d c2 = _mm256_add_pd(_mm256_add_pd(c1, p.add2), p.then2), c3 = _mm256_add_pd(c2, p.add3);
       const __m128i q0 = fixed_units(c0), q1 = fixed_units(c1), q2 = fixed_units(c2), q3 = fixed_units(c3);
-      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[0]), q0);
-      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[1]), _mm_sub_epi32(q1, q0));
-      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[2]), _mm_sub_epi32(q2, q1));
-      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[3]), _mm_sub_epi32(q3, q2));
+      // Share c of the four lanes in row c, transposed to lane i's four shares in row i.
+      const __m128i s0 = q0, s1 = _mm_sub_epi32(q1, q0), s2 = _mm_sub_epi32(q2, q1), s3 = _mm_sub_epi32(q3, q2);
+      const __m128i t0 = _mm_unpacklo_epi32(s0, s1), t1 = _mm_unpacklo_epi32(s2, s3);
+      const __m128i t2 = _mm_unpackhi_epi32(s0, s1), t3 = _mm_unpackhi_epi32(s2, s3);
+      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[0]), _mm_unpacklo_epi64(t0, t1));
+      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[1]), _mm_unpackhi_epi64(t0, t1));
+      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[2]), _mm_unpacklo_epi64(t2, t3));
+      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[3]), _mm_unpackhi_epi64(t2, t3));
     } else {
       _mm256_store_pd(add0, p.add0);
       _mm256_store_pd(add1, p.add1);
@@ -373,6 +379,12 @@ struct SplitLanes {
     }
     _mm_store_si128(reinterpret_cast<__m128i*>(first), p.first);
     _mm_store_si128(reinterpret_cast<__m128i*>(past), p.past);
+  }
+  /// kFixed: lane i's piece within three cells added to the fixed-point cells at acc (its four shares at once).
+  [[gnu::target("avx2"), gnu::always_inline]] void add_fixed(int i, std::int32_t* acc) const {
+    auto* const cells = reinterpret_cast<__m128i*>(acc + first[i]);
+    const __m128i shares = _mm_load_si128(reinterpret_cast<const __m128i*>(fixed[i]));
+    _mm_storeu_si128(cells, _mm_add_epi32(_mm_loadu_si128(cells), shares));
   }
   /// Lane i's piece added to the cells at acc (accumulate_piece's numbers, in its order).
   [[gnu::target("avx2"), gnu::always_inline]] void add(int i, double* acc) const {

@@ -217,7 +217,7 @@ template <bool kRanges, class Cell>
           detail::accumulate_long_piece_fixed(acc, std::min(split.xa[i], split.xb[i]),
                                               std::max(split.xa[i], split.xb[i]), split.h[i], first, last - 1);
         } else {
-          for (int c = 0; c < 4; ++c) acc[first + c] += split.fixed[c][i];
+          split.add_fixed(i, acc);
         }
       } else {
         split.add(i, acc);
@@ -660,7 +660,7 @@ template <DenseRows kMode, class Cell>
                                               std::max(split.xa[i], split.xb[i]), split.h[i], split.first[i],
                                               split.first[i] + split.past[i]);
         } else {
-          for (int c = 0; c < 4; ++c) row[split.first[i] + c] += split.fixed[c][i];
+          split.add_fixed(i, row);
         }
       } else {
         split.add(i, row);
