@@ -29,6 +29,18 @@ namespace vraster::detail {
   }
 }
 
+/// Where the colour is opaque (`opaque`) and all eight of a whole step's coverages are 1: the eight pixels become the
+/// colour whatever they were (over8 adds scale8(d, 0) = 0 to it), so they are stored without being read (a pixel
+/// load is most of a step's time where the pixels are cold). Returns whether it stored them.
+[[gnu::target("avx2"), gnu::always_inline]] inline bool store_covered8(std::uint32_t* p, int n, __m256 coverage,
+                                                                       bool opaque, std::uint32_t color) {
+  if (!opaque || n != 8 || _mm256_movemask_ps(_mm256_cmp_ps(coverage, _mm256_set1_ps(1.f), _CMP_GE_OQ)) != 0xFF) {
+    return false;
+  }
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), _mm256_set1_epi32(static_cast<int>(color)));
+  return true;
+}
+
 /// Sweeps cells[0, count) from the running sum `sum` (left past them) in blocks of four, zeroing them, and blends the
 /// coverage of the first `pixels` (at most count) onto px[0, pixels) with colour `color` (premultiplied, not fully
 /// transparent). The cells up to three past count, which the last block reads, must be zero (untouched); they are
@@ -39,6 +51,7 @@ template <FillRule R>
                                                      std::uint32_t* px, std::uint32_t color) {
   namespace a2 = avx2;
   const __m256i c16 = _mm256_unpacklo_epi8(_mm256_set1_epi32(static_cast<int>(color)), _mm256_setzero_si256());
+  const bool opaque = color >> 24 == 255;
   __m256d carry = _mm256_set1_pd(sum);
   for (int i = 0; i < count; i += 8) {
     // Coverage in registers: a load of floats stored as two halves moments before would wait for the stores.
@@ -51,7 +64,9 @@ template <FillRule R>
     }
     const int n = std::min(8, pixels - i);
     if (n <= 0) continue;  // cells right of the image: swept for the sum only
-    blend_step8(px + i, n, c16, a2::quantize8x8(_mm256_set_m128(high, low), _mm256_set1_ps(1.f)));
+    const __m256 coverage = _mm256_set_m128(high, low);
+    if (store_covered8(px + i, n, coverage, opaque, color)) continue;
+    blend_step8(px + i, n, c16, a2::quantize8x8(coverage, _mm256_set1_ps(1.f)));
   }
   sum = _mm_cvtsd_f64(_mm256_castpd256_pd128(carry));
 }
@@ -64,11 +79,13 @@ template <FillRule R>
                                                            std::int32_t& sum, std::uint32_t* px, std::uint32_t color) {
   namespace a2 = avx2;
   const __m256i c16 = _mm256_unpacklo_epi8(_mm256_set1_epi32(static_cast<int>(color)), _mm256_setzero_si256());
+  const bool opaque = color >> 24 == 255;
   __m256i carry = _mm256_set1_epi32(sum);
   for (int i = 0; i < count; i += kFixedBlock) {
     const __m256 coverage = sweep_fixed_block_avx2<R, false>(cells + i, carry);  // (the snap moves no level)
     const int n = std::min(kFixedBlock, pixels - i);
     if (n <= 0) continue;  // cells right of the image: swept for the sum only
+    if (store_covered8(px + i, n, coverage, opaque, color)) continue;
     blend_step8(px + i, n, c16, a2::quantize8x8(coverage, _mm256_set1_ps(1.f)));
   }
   sum = _mm256_cvtsi256_si32(carry);
