@@ -3,6 +3,7 @@
 // the row's end) and self-intersecting ones.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "raster/cpu.hpp"
@@ -301,6 +302,47 @@ TEST(DenseSweep, FixedPointBlocksGiveTheSameBitsWithAndWithoutAvx2AndWithThreads
     ASSERT_EQ(one.data, two.data) << "shape " << it;
   }
   EXPECT_GE(differs, 20);
+}
+
+// Fixed-point cells need at most kFixedRowEdges pieces in every row, not at most that many edges: a 64-sided disc
+// (two or three pieces a row) takes them, and its coverage differs from the double cells' (within the bound); a comb
+// of 40 teeth (40 pieces in its middle rows) keeps double cells, bit for bit, in every row.
+TEST(DenseSweep, FixedPointCellsGoByThePiecesOfEachRowNotTheEdgeCount) {
+  Path disc, comb;
+  for (int i = 0; i < 64; ++i) {
+    const double t = 6.283185307179586 * i / 64;
+    const Point p{24.3 + 20 * std::cos(t), 16.7 + 14 * std::sin(t)};
+    if (i == 0) {
+      disc.move_to(p);
+    } else {
+      disc.line_to(p);
+    }
+  }
+  disc.close();
+  comb.move_to(1.3, 30.5);
+  for (int i = 0; i < 20; ++i) {
+    comb.line_to(1.3 + 2.2 * i, 4.4);
+    comb.line_to(2.4 + 2.2 * i, 27.1);
+  }
+  comb.line_to(45.5, 30.5);
+  comb.close();
+  for (const auto& [path, fixed_expected] : {std::pair{&disc, true}, std::pair{&comb, false}}) {
+    Polylines lines;
+    flatten(*path, Affine{}, FlattenOptions{}, lines);
+    ASSERT_GT(lines.points.size(), detail::kFixedRowEdges);
+    for (const FillRule rule : {FillRule::NonZero, FillRule::EvenOdd}) {
+      const CoverageGrid fixed = fill_with(lines, rule, 48, 32, Rasterizer::kDefaultDenseLimit);
+      const CoverageGrid doubles = fill_with(lines, rule, 48, 32, Rasterizer::kDefaultDenseLimit, false);
+      bool differs = false;
+      for (int y = 0; y < 32; ++y) {
+        for (int x = 0; x < 48; ++x) {
+          ASSERT_NEAR(fixed.at(x, y), doubles.at(x, y), detail::kFixedCellsError) << x << "," << y;
+          differs = differs || fixed.at(x, y) != doubles.at(x, y);
+        }
+      }
+      EXPECT_EQ(differs, fixed_expected) << (fixed_expected ? "the disc" : "the comb") << " " << to_string(rule);
+    }
+  }
 }
 
 TEST(DenseSweep, WindingOfAShapeLeavingTheImageOnTheRightHoldsToTheRowEnd) {

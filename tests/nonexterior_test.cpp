@@ -252,7 +252,9 @@ TEST(NonExteriorHand, CircleWithReversedConcentricCircle) {
   const auto want = reference_coverage({outer_poly}, 33, 32);
   for (AntiAlias aa : {AntiAlias::Analytic, AntiAlias::Exact}) {
     const auto got = engine_coverage(both, FillRule::NonExterior, aa, 33, 32, tol);
-    EXPECT_TRUE(grids_near(got, want, 33, 1e-9)) << to_string(aa);
+    // (analytic: the boundary's fill in fixed-point cells, its rows having few pieces)
+    const double bound = 1e-9 + (aa == AntiAlias::Analytic ? detail::kFixedCellsError : 0.0);
+    EXPECT_TRUE(grids_near(got, want, 33, bound)) << to_string(aa);
     // Full disc area within the flattening tolerance (area error <= perimeter * tolerance).
     EXPECT_NEAR(exact::sum(got), std::numbers::pi * R * R, 2 * std::numbers::pi * R * tol);
     const auto nz = engine_coverage(both, FillRule::NonZero, aa, 33, 32, tol);

@@ -1022,6 +1022,32 @@ bool few_pieces_per_row(const std::vector<Edge>& edges, int y_min, int y_max) {
 }
 }  // namespace
 
+namespace {
+// Whether no row of the fill holds more than kFixedRowEdges pieces (an edge is a piece in every row it crosses), so
+// that its rows can take fixed-point cells within their bound: trivially so for a fill of that many edges; else from
+// a count of the edges starting and ending in each row (`counts`: scratch), over the fill's whole height, so that
+// every band and strip decides alike.
+bool few_pieces_in_every_row(const std::vector<Edge>& edges, std::vector<int>& counts) {
+  if (edges.size() <= detail::kFixedRowEdges) return true;
+  int lo = std::numeric_limits<int>::max(), hi = std::numeric_limits<int>::min();
+  for (const Edge& e : edges) {
+    lo = std::min(lo, static_cast<int>(std::floor(e.y0)));
+    hi = std::max(hi, static_cast<int>(std::ceil(e.y1)));
+  }
+  counts.assign(static_cast<std::size_t>(hi - lo) + 1, 0);
+  for (const Edge& e : edges) {
+    ++counts[static_cast<std::size_t>(static_cast<int>(std::floor(e.y0)) - lo)];
+    --counts[static_cast<std::size_t>(static_cast<int>(std::ceil(e.y1)) - lo)];
+  }
+  int crossing = 0;
+  for (const int c : counts) {
+    crossing += c;
+    if (crossing > static_cast<int>(detail::kFixedRowEdges)) return false;
+  }
+  return true;
+}
+}  // namespace
+
 // The one choice of the dense sweep, for fills drawn at once and queued ones alike (both must take the same path).
 detail::DenseKind detail::dense_kind(const std::vector<Edge>& edges, int y_min, int y_max, int columns,
                                      std::int64_t dense_limit) {
@@ -1049,8 +1075,8 @@ detail::RowBatchBuffers detail::row_batch_buffers(std::vector<CoverageRow>& batc
 // Rows [y_from, y_to) of a dense fill, in strips of at most Rasterizer::kDefaultDenseLimit cells (a thin shape's
 // box may be the image's, and the block must stay in the cache). Each row takes the pieces of the edges inside it (in
 // edge order) and a running sum of its own, so strips, like bands, give the bits one block would.
-// Fixed-point cells (fixed_cells) for the wide blocks (Trimmed, Ranged) of fills of at most kFixedRowEdges edges, whose
-// rows have at most that many pieces: the row sweep's bound holds for them. Narrow blocks (glyphs, micro shapes)
+// Fixed-point cells (fixed_cells) for the wide blocks (Trimmed, Ranged) of fills with at most kFixedRowEdges pieces in
+// every row (few_pieces_in_every_row): the row sweep's bound holds for them. Narrow blocks (glyphs, micro shapes)
 // keep double cells: their sums are short, and their areas stay exact to the double's round-off.
 void detail::sweep_dense_range(FillRule rule, DenseKind kind, const std::vector<Edge>& edges, int y_from, int y_to,
                                int x_base, int columns, int width, bool fixed_cells, DenseScratch s,
@@ -1058,7 +1084,7 @@ void detail::sweep_dense_range(FillRule rule, DenseKind kind, const std::vector<
   const DenseRows mode = kind == DenseKind::Ranged             ? DenseRows::Ranged
                          : columns >= kTrimmedDenseColumns ? DenseRows::Trimmed
                                                              : DenseRows::Whole;
-  const bool fixed = fixed_cells && mode != DenseRows::Whole && edges.size() <= detail::kFixedRowEdges;
+  const bool fixed = fixed_cells && mode != DenseRows::Whole && few_pieces_in_every_row(edges, s.notes);
   const int stride = fixed ? dense_stride<std::int32_t>(columns) : dense_stride(columns);
   const int strip_rows =
       static_cast<int>(std::clamp<std::int64_t>(Rasterizer::kDefaultDenseLimit / stride, 1, y_to - y_from));
