@@ -145,6 +145,21 @@ inline void accumulate_piece_fixed(std::int32_t* acc, double xa, double xb, doub
   accumulate_split_fixed(acc, i0, h0 * (1.0 - m0), h0 * m0, whole, whole, last0, last1);
 }
 
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+/// Lane i of a fixed-point split added to the cells at acc: a long piece by accumulate_long_piece_fixed, one within
+/// three cells by its four rounded shares at once (accumulate_piece_fixed's integers either way). Both AVX2 sweeps
+/// (the row sweep's pieces, the dense walk) add a lane this way.
+[[gnu::target("avx2"), gnu::always_inline]] inline void add_split_lane(const SplitLanes<true>& split, int i,
+                                                                       std::int32_t* acc) {
+  if (split.past[i] > 2) {
+    accumulate_long_piece_fixed(acc, std::min(split.xa[i], split.xb[i]), std::max(split.xa[i], split.xb[i]),
+                                split.h[i], split.first[i], split.first[i] + split.past[i]);
+  } else {
+    split.add_fixed(i, acc);
+  }
+}
+#endif
+
 /// cells[0, n) -> cov[0, n) under R from the running sum `sum` (left past them); zeroes the cells.
 template <FillRule R>
 inline void sweep_fixed_cells_scalar(std::int32_t* cells, float* cov, int n, std::int32_t& sum) {

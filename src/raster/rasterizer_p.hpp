@@ -136,7 +136,12 @@ struct DenseScratch {
   std::vector<float>& coverage;     // their coverage, a slot per row
 };
 /// The dense sweep of rows [y_from, y_to) of `edges` (cells [x_base, x_base + columns)).
-/// fixed_cells: fills of few edges in fixed-point cells (fixed_cells.hpp), as the row sweep's rows of few edges.
+/// Whether a dense fill's rows take fixed-point cells (fixed_cells.hpp), as the row sweep's rows of few edges: its
+/// wide blocks with at most kFixedRowEdges pieces in every row, where `fixed_cells` allows them. Once per fill
+/// (`scratch`: any vector), so that its bands and strips all decide alike.
+bool dense_fixed_cells(bool fixed_cells, DenseKind kind, int columns, const std::vector<Edge>& edges,
+                       std::vector<int>& scratch);
+/// fixed_cells: dense_fixed_cells' answer for the fill.
 void sweep_dense_range(FillRule rule, DenseKind kind, const std::vector<Edge>& edges, int y_from, int y_to,
                        int x_base, int columns, int width, bool fixed_cells, DenseScratch s, CoverageSink& sink);
 
@@ -191,6 +196,7 @@ struct QueuedFill {
   Polylines lines;  // Unbuilt: the fill's outline, as fill_queued got it
   bool prebuilt = false;  // Unbuilt: edges, y_min and y_max are built already (the fill that started the queue)
   int x_base = 0, columns = 0;  // Dense, Ranged: the cells the edges reach (edge_columns)
+  bool fixed_cells = false;     // Dense, Ranged: rows in fixed-point cells (dense_fixed_cells)
   FillRule rule = FillRule::NonZero;
   AntiAlias aa = AntiAlias::Analytic;
   int width = 0, height = 0;
@@ -294,12 +300,12 @@ class RasterizerImpl {
   /// fixed_cells: the row sweep's rows of few edges in fixed point (analytic mode, unless turned off).
   void sweep_analytic(FillRule rule, int width, bool fixed_cells, CoverageSink& sink);
   void sweep_sampled(FillRule rule, AntiAlias aa, int width, CoverageSink& sink);
-  /// fixed_cells: fills of few edges in fixed point (sweep_dense_range).
+  /// fixed_cells: whether fixed-point cells are allowed (dense_fixed_cells decides for the fill).
   bool sweep_dense(FillRule rule, int width, int x_base, int columns, bool fixed_cells, CoverageSink& sink);
   [[gnu::noinline]] void sweep_ranged(FillRule rule, int width, int x_base, int columns, bool fixed_cells,
                                       CoverageSink& sink);
   /// The dense sweep of rows [y_from, y_to) of a queued fill, on one thread.
-  void sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s) const;
+  static void sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s);
   void bucket_edges(bool by_sample_row) {
     detail::bucket_edges(edges_, y_min_, y_max_, by_sample_row, order_, bucket_start_, bands_[0].bucket);
   }

@@ -213,12 +213,7 @@ template <bool kRanges, class Cell>
       if (split.h[i] == 0) continue;
       const int first = split.first[i], last = split.first[i] + split.past[i] + 1;
       if constexpr (kFixed) {
-        if (split.past[i] > 2) {
-          detail::accumulate_long_piece_fixed(acc, std::min(split.xa[i], split.xb[i]),
-                                              std::max(split.xa[i], split.xb[i]), split.h[i], first, last - 1);
-        } else {
-          split.add_fixed(i, acc);
-        }
+        detail::add_split_lane(split, i, acc);
       } else {
         split.add(i, acc);
       }
@@ -655,13 +650,7 @@ template <DenseRows kMode, class Cell>
       if (!(pieces >> i & 1)) continue;
       Cell* const row = block + static_cast<std::size_t>(y + i - y_min) * stride;
       if constexpr (kFixed) {
-        if (split.past[i] > 2) {
-          detail::accumulate_long_piece_fixed(row, std::min(split.xa[i], split.xb[i]),
-                                              std::max(split.xa[i], split.xb[i]), split.h[i], split.first[i],
-                                              split.first[i] + split.past[i]);
-        } else {
-          split.add_fixed(i, row);
-        }
+        detail::add_split_lane(split, i, row);
       } else {
         split.add(i, row);
       }
@@ -931,7 +920,7 @@ void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int 
   sweep_dense_rows_portable<R, kMode>(edges, y_min, y_max, x_base, columns, width, block, notes, out, sink);
 }
 
-// The block's mode (dense_rows_mode); fixed-point cells for Trimmed and Ranged blocks only (fixed: a non-null block).
+// A block of the given mode; in fixed-point cells where `fixed` is given (Trimmed and Ranged blocks only).
 template <FillRule R>
 void sweep_dense_rows(DenseRows mode, const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns,
                       int width, double* block, std::int32_t* fixed, int* notes, const detail::RowBatchBuffers& out,
@@ -1023,10 +1012,15 @@ bool few_pieces_per_row(const std::vector<Edge>& edges, int y_min, int y_max) {
 }  // namespace
 
 namespace {
+// What a dense block of this kind and width notes of its rows.
+DenseRows dense_rows_mode(detail::DenseKind kind, int columns) {
+  if (kind == detail::DenseKind::Ranged) return DenseRows::Ranged;
+  return columns >= kTrimmedDenseColumns ? DenseRows::Trimmed : DenseRows::Whole;
+}
+
 // Whether no row of the fill holds more than kFixedRowEdges pieces (an edge is a piece in every row it crosses), so
 // that its rows can take fixed-point cells within their bound: trivially so for a fill of that many edges; else from
-// a count of the edges starting and ending in each row (`counts`: scratch), over the fill's whole height, so that
-// every band and strip decides alike.
+// a count of the edges starting and ending in each row (`counts`: scratch), over the fill's whole height.
 bool few_pieces_in_every_row(const std::vector<Edge>& edges, std::vector<int>& counts) {
   if (edges.size() <= detail::kFixedRowEdges) return true;
   int lo = std::numeric_limits<int>::max(), hi = std::numeric_limits<int>::min();
@@ -1047,6 +1041,13 @@ bool few_pieces_in_every_row(const std::vector<Edge>& edges, std::vector<int>& c
   return true;
 }
 }  // namespace
+
+// Once per fill, before its bands and strips (so that all of them decide alike): wide blocks (Trimmed, Ranged) whose
+// rows hold at most kFixedRowEdges pieces each take fixed-point cells, where the rasterizer allows them.
+bool detail::dense_fixed_cells(bool fixed_cells, DenseKind kind, int columns, const std::vector<Edge>& edges,
+                               std::vector<int>& scratch) {
+  return fixed_cells && dense_rows_mode(kind, columns) != DenseRows::Whole && few_pieces_in_every_row(edges, scratch);
+}
 
 // The one choice of the dense sweep, for fills drawn at once and queued ones alike (both must take the same path).
 detail::DenseKind detail::dense_kind(const std::vector<Edge>& edges, int y_min, int y_max, int columns,
@@ -1075,16 +1076,14 @@ detail::RowBatchBuffers detail::row_batch_buffers(std::vector<CoverageRow>& batc
 // Rows [y_from, y_to) of a dense fill, in strips of at most Rasterizer::kDefaultDenseLimit cells (a thin shape's
 // box may be the image's, and the block must stay in the cache). Each row takes the pieces of the edges inside it (in
 // edge order) and a running sum of its own, so strips, like bands, give the bits one block would.
-// Fixed-point cells (fixed_cells) for the wide blocks (Trimmed, Ranged) of fills with at most kFixedRowEdges pieces in
-// every row (few_pieces_in_every_row): the row sweep's bound holds for them. Narrow blocks (glyphs, micro shapes)
-// keep double cells: their sums are short, and their areas stay exact to the double's round-off.
+// Fixed-point cells where dense_fixed_cells said so for the fill (its wide blocks with at most kFixedRowEdges pieces
+// in every row: the row sweep's bound holds for them). Narrow blocks (glyphs, micro shapes) keep double cells: their
+// sums are short, and their areas stay exact to the double's round-off.
 void detail::sweep_dense_range(FillRule rule, DenseKind kind, const std::vector<Edge>& edges, int y_from, int y_to,
                                int x_base, int columns, int width, bool fixed_cells, DenseScratch s,
                                CoverageSink& sink) {
-  const DenseRows mode = kind == DenseKind::Ranged             ? DenseRows::Ranged
-                         : columns >= kTrimmedDenseColumns ? DenseRows::Trimmed
-                                                             : DenseRows::Whole;
-  const bool fixed = fixed_cells && mode != DenseRows::Whole && few_pieces_in_every_row(edges, s.notes);
+  const DenseRows mode = dense_rows_mode(kind, columns);
+  const bool fixed = fixed_cells && mode != DenseRows::Whole;
   const int stride = fixed ? dense_stride<std::int32_t>(columns) : dense_stride(columns);
   const int strip_rows =
       static_cast<int>(std::clamp<std::int64_t>(Rasterizer::kDefaultDenseLimit / stride, 1, y_to - y_from));
@@ -1112,10 +1111,11 @@ bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, i
                                          CoverageSink& sink) {
   const DenseKind kind = dense_kind(edges_, y_min_, y_max_, columns, dense_limit_);
   if (kind == DenseKind::None) return false;
+  const bool fixed = dense_fixed_cells(fixed_cells, kind, columns, edges_, dense_notes_);
   if (kind == DenseKind::Ranged) {
-    sweep_ranged(rule, width, x_base, columns, fixed_cells, sink);
+    sweep_ranged(rule, width, x_base, columns, fixed, sink);
   } else {
-    sweep_dense_range(rule, kind, edges_, y_min_, y_max_, x_base, columns, width, fixed_cells,
+    sweep_dense_range(rule, kind, edges_, y_min_, y_max_, x_base, columns, width, fixed,
                       {dense_block_, dense_fixed_block_, dense_notes_, dense_batch_, row_coverage_}, sink);
   }
   return true;
@@ -1133,9 +1133,9 @@ void detail::RasterizerImpl::sweep_ranged(FillRule rule, int width, int x_base, 
 }
 
 // Rows [y_from, y_to) of a queued dense fill.
-void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s) const {
+void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s) {
   const DenseKind kind = fill.kind == QueuedFill::Kind::Ranged ? DenseKind::Ranged : DenseKind::Dense;
-  sweep_dense_range(fill.rule, kind, fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width, fixed_cells_,
+  sweep_dense_range(fill.rule, kind, fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width, fill.fixed_cells,
                     {s.dense_block, s.dense_fixed_block, s.dense_notes, s.batch, s.coverage}, *fill.sink);
 }
 
