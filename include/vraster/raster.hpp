@@ -103,6 +103,10 @@ class CoverageSink {
   /// A copy of this sink that can be kept and called later (Rasterizer::fill_queued keeps one for each fill it
   /// queues), or null (the default) for a sink that cannot be copied so: fills into it are drawn at once.
   virtual std::unique_ptr<CoverageSink> clone() const { return nullptr; }
+  /// clone() without the heap: a copy constructed in `storage` (`bytes` bytes, aligned for std::max_align_t), which
+  /// the caller destroys but never deletes, or null where the sink does not fit or cannot be copied so (the default;
+  /// clone() is then asked). The queue keeps small sinks so, in its entries: a frame of small fills allocates nothing.
+  virtual CoverageSink* clone_into(void* /*storage*/, std::size_t /*bytes*/) const { return nullptr; }
   /// A hint before the calls of one small fill: they stay in rows [y0, y1) and columns [x0, x1). A sink that writes
   /// pixels may start fetching them into the cache while the rasterizer accumulates the fill (the default ignores
   /// it). Only a hint: it changes no result.
@@ -213,13 +217,15 @@ class Rasterizer {
   ///
   /// The rasterizer owns `sink` until its fill has run. Queued: fills whose sink takes concurrent rows, in every
   /// mode but Exact, under every rule but NonExterior; the others (and every fill without threads) are drawn at
-  /// once, after what is queued, as are small fills with nothing queued before them (queueing would cost more
-  /// than it saves; once a large fill waits, small ones join it). Whatever the sinks write (the image) must not be read or written otherwise before flush(); fill(),
-  /// set_threads() and the destructor flush first, and the queue runs by itself when it holds more than a memory
-  /// budget (16 MiB of edge tables).
+  /// once, after what is queued, as are small fills with nothing queued before them until the frame shows many of
+  /// them (queueing would cost more than it saves; once a large fill waits, small ones join it). Whatever the sinks
+  /// write (the image) or read must not be read or written otherwise before flush(); fill(), set_threads() and the
+  /// destructor flush first. When the queue holds more than a memory budget (2 MiB) it is drawn by the other
+  /// threads in the background while the caller queues the next fills (which are drawn after it).
   void fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height,
                    std::unique_ptr<CoverageSink> sink);
-  /// As above with a borrowed sink: a fill that waits keeps sink.clone() (a sink that gives none is drawn at once);
+  /// As above with a borrowed sink: a fill that waits keeps a copy (sink.clone_into the queue's own storage, else
+  /// sink.clone(); a sink that gives none is drawn at once);
   /// one drawn at once uses `sink` itself, so no copy is made for it.
   void fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
   /// Runs the queued fills (nothing when none is queued).

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <new>
 
 #include "vraster/flatten.hpp"
 #include "vraster/image.hpp"
@@ -27,6 +28,9 @@ class SolidCompositor final : public CoverageSink {
   void expect(int y0, int y1, int x0, int x1) override;
   /// A copy drawing the same colour onto the same image.
   std::unique_ptr<CoverageSink> clone() const override { return std::make_unique<SolidCompositor>(*this); }
+  CoverageSink* clone_into(void* storage, std::size_t bytes) const override {
+    return bytes >= sizeof(SolidCompositor) ? new (storage) SolidCompositor(*this) : nullptr;
+  }
   /// 8-bit images with a colour that is not fully transparent: the rasterizer may blend runs itself.
   bool solid_over8(SolidOver8& target) const override;
 
@@ -105,8 +109,8 @@ class Renderer {
   /// queue until flush() (Rasterizer::fill_queued: which fills queue, and why the pixels are the same).
   void fill(const Path& path, const Affine& transform, const FillOptions& options, int width, int height,
             std::unique_ptr<CoverageSink> sink);
-  /// As fill() above with a borrowed sink: a fill that waits keeps sink.clone(); a sink that gives none is drawn at
-  /// once (Rasterizer::fill_queued).
+  /// As fill() above with a borrowed sink: a fill that waits keeps a copy of it (CoverageSink::clone_into or clone);
+  /// a sink that gives none is drawn at once (Rasterizer::fill_queued).
   void fill_queued(const Path& path, const Affine& transform, const FillOptions& options, int width, int height,
                    CoverageSink& sink);
 

@@ -57,7 +57,7 @@ void BandPool::take_bands(int worker) {
   }
 }
 
-void BandPool::run_erased(int bands, void* job, Call call) {
+void BandPool::start_erased(int bands, void* job, Call call) {
   bands = std::min(bands, kMaxBands);
   if (bands <= 0) return;
   if (workers_.empty()) {
@@ -66,26 +66,32 @@ void BandPool::run_erased(int bands, void* job, Call call) {
   }
   job_ = job;
   call_ = call;
+  bands_ = bands;
   done_.store(0, std::memory_order_relaxed);
   ++generation_;
   claim_.store(pack(generation_, bands, 0), std::memory_order_release);
   wake_.store(generation_);
   if (sleepers_.load() > 0) wake_.notify_all();
+}
+
+void BandPool::finish() {
+  if (bands_ == 0) return;
   take_bands(0);
   // Bands claimed by workers may still be running.
-  for (int spins = 0; done_.load(std::memory_order_acquire) < bands; ++spins) {
+  for (int spins = 0; done_.load(std::memory_order_acquire) < bands_; ++spins) {
     if (spins < 4096) {
       cpu_relax();
     } else {
       std::this_thread::yield();  // a worker was descheduled mid-band: let it run
     }
   }
+  bands_ = 0;
 }
 
 void BandPool::worker_loop(int worker) {
   std::uint32_t seen = 0;
   for (;;) {
-    // Wait for a new run: spin a little, then sleep until run_erased() or the destructor wakes us.
+    // Wait for a new run: spin a little, then sleep until start() or the destructor wakes us.
     if (wake_.load() == seen) {
       const auto spin_until = std::chrono::steady_clock::now() + kSpinTime;
       int spins = 0;

@@ -25,13 +25,23 @@ class BandPool {
   /// the workers (1 .. threads - 1), and returns when every call has returned. Not reentrant: one run at a time.
   template <class Job>
   void run(int bands, Job& job) {
-    run_erased(bands, &job, [](void* j, int band, int worker) { (*static_cast<Job*>(j))(band, worker); });
+    start(bands, job);
+    finish();
   }
+  /// run() in two halves: start() hands the bands to the workers and returns at once (this thread takes none, and
+  /// may do other work meanwhile); finish() takes what is left on this thread and returns when every call has
+  /// returned. `job` must live until then, and every start() needs its finish() before the next start() or run().
+  /// Without workers, start() makes every call itself.
+  template <class Job>
+  void start(int bands, Job& job) {
+    start_erased(bands, &job, [](void* j, int band, int worker) { (*static_cast<Job*>(j))(band, worker); });
+  }
+  void finish();
   static constexpr int kMaxBands = 0xFFFF;
 
  private:
   using Call = void (*)(void* job, int band, int worker);
-  void run_erased(int bands, void* job, Call call);
+  void start_erased(int bands, void* job, Call call);
   void take_bands(int worker);
   void worker_loop(int worker);
 
@@ -42,6 +52,7 @@ class BandPool {
   std::atomic<std::uint32_t> wake_{0};  // the generation again, for sleeping workers (futex-style wait / notify)
   std::atomic<int> sleepers_{0};
   std::atomic<int> done_{0};            // bands of the current run finished
+  int bands_ = 0;                       // bands of the current run (0: none started since the last finish)
   std::atomic<bool> stop_{false};
   std::uint32_t generation_ = 0;
   void* job_ = nullptr;                 // written before a run is published, read only by whoever claimed a band

@@ -37,12 +37,9 @@ constexpr int kQueueMinBandRows = 8;
 // win back. Once a large fill has started a queue, small ones join it (the order must hold).
 constexpr double kMinQueuedFillWork = 800;
 // Small fills start a queue too once fills drawn at once since the last flush add up to this much work: the frame
-// is evidently made of many of them (1,000 polygons of 32 px), and a queue shares them out among the threads...
+// is evidently made of many of them (1,000 polygons of 32 px, or 20,000 triangles of 2 px), and a queue shares
+// them out among the threads, drawn in the background while the caller queues more (run_queue).
 constexpr double kWorkDrawnBeforeQueue = 3200;
-// ...but only a fill of at least this much: queuing costs a fill some 300-500 ns (its outline copied, its sink
-// cloned, its edges stored and read back cold), more than glyph-sized fills (under 1 us, 30-70 units) win back on
-// two threads. (200 left polygons of 16 px, about 100 units, on one thread; 100 gives them 1.15-1.33x.)
-constexpr double kMinWorkToStartQueue = 100;
 // Recorded fills: composited pixels per unit of work, as band_work counts the area inside.
 constexpr double kRecordedPixelsPerUnit = 16;
 // Memory the queue may hold (outlines, edge tables and recordings) before fill_queued runs it. What a fill queues
@@ -118,11 +115,34 @@ void CoverageRecording::clear() {
 
 std::size_t CoverageRecording::bytes() const { return calls_.size() * sizeof(Call) + values_.size() * sizeof(float); }
 
+bool QueuedFill::keep_sink(const CoverageSink& s, std::unique_ptr<CoverageSink> owned) {
+  drop_sink();
+  if (owned) {
+    owned_sink_ = std::move(owned);
+    sink = owned_sink_.get();
+    return true;
+  }
+  sink = s.clone_into(sink_storage_, kSinkStorageBytes);
+  sink_in_storage_ = sink != nullptr;
+  if (!sink) {
+    owned_sink_ = s.clone();
+    sink = owned_sink_.get();
+  }
+  return sink != nullptr;
+}
+
+void QueuedFill::drop_sink() {
+  if (sink_in_storage_) sink->~CoverageSink();
+  sink_in_storage_ = false;
+  owned_sink_.reset();
+  sink = nullptr;
+}
+
 std::size_t QueuedFill::bytes() const {
   // An unbuilt fill counts the edges it will have (about one per point) with its outline.
   const std::size_t edge_bytes =
       kind == Kind::Unbuilt && !prebuilt ? lines.points.size() * sizeof(Edge) : edges.size() * sizeof(Edge);
-  return lines.points.size() * sizeof(Point) + lines.ends.size() * sizeof(std::uint32_t) + lines.closed.size() +
+  return sizeof(QueuedFill) + lines.points.size() * sizeof(Point) + lines.ends.size() * sizeof(std::uint32_t) + lines.closed.size() +
          edge_bytes + (order.size() + bucket_start.size()) * sizeof(std::uint32_t) + recording.bytes();
 }
 
@@ -135,28 +155,18 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
     return;
   }
   if (width <= 0 || height <= 0) return;
-  if (queued_ == 0) {
-    // A fill of a few points in a small box, with nothing queued, is drawn at once whatever the frame holds (its
-    // work is below kMinWorkToStartQueue): known from a bound, and drawn as without threads.
-    const double bound = few_points_work_bound(lines);
-    if (bound < kMinWorkToStartQueue) {
-      drawn_at_once_ += bound;
-      fill(lines, rule, aa, width, height, sink);
-      return;
-    }
-  }
-  if (queued_ == queue_.size()) queue_.emplace_back();
-  QueuedFill& q = queue_[queued_];
+  std::deque<QueuedFill>& queue = queues_[filling_];
+  if (queued_ == queue.size()) queue.emplace_back();
+  QueuedFill& q = queue[queued_];
   q.rule = rule;
   q.aa = aa;
   q.width = width;
   q.recording.clear();
-  // The choices of fill(), made now. A small fill with nothing queued before it is drawn at once (unless it starts a
-  // queue for a frame of many small fills, above).
+  // The choices of fill(), made now. A small fill with nothing queued before it (nor drawing in the background) is
+  // drawn at once, unless it starts a queue for a frame of many small fills.
   // Whether a fill of this much work is drawn at once; if so, it counts towards the frame's drawn_at_once_.
   auto at_once = [&](double work) {
-    if (queued_ > 0 || work >= kMinQueuedFillWork) return false;
-    if (drawn_at_once_ >= kWorkDrawnBeforeQueue && work >= kMinWorkToStartQueue) return false;
+    if (queued_ > 0 || running_ || work >= kMinQueuedFillWork || drawn_at_once_ >= kWorkDrawnBeforeQueue) return false;
     drawn_at_once_ += work;
     return true;
   };
@@ -181,8 +191,7 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
   }
   if (recorded && q.recording.empty()) return;  // nothing visible
   // The sink to keep: the one handed over, or a copy (made only now that the fill really waits).
-  q.sink = owned ? std::move(owned) : sink.clone();
-  if (!q.sink) {  // a sink that cannot be kept: drawn now, after the queue
+  if (!q.keep_sink(sink, std::move(owned))) {  // a sink that cannot be kept: drawn now, after the queue
     flush();
     if (recorded) {
       q.recording.replay(q.recording.y_min(), q.recording.y_max(), sink);
@@ -219,7 +228,8 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
   ++queued_;
   queued_bytes_ += q.bytes();
   queued_work_ += q.work;
-  if (queued_bytes_ > kQueueBudgetBytes) run_queue();  // not the frame's end: drawn_at_once_ goes on
+  // Not the frame's end (drawn_at_once_ goes on): drawn in the background while the next fills are queued.
+  if (queued_bytes_ > kQueueBudgetBytes) run_queue(true);
 }
 
 void RasterizerImpl::build_queued(QueuedFill& q, BandScratch& s) const {
@@ -241,29 +251,30 @@ void RasterizerImpl::build_queued(QueuedFill& q, BandScratch& s) const {
     } else {
       detail::bucket_edges(q.edges, q.y_min, q.y_max, false, q.order, q.bucket_start, s.bucket);
       q.kind = QueuedFill::Kind::Analytic;
+      q.fixed_cells = fixed_cells_;  // (kept: the rasterizer's setting may change while the fill draws)
     }
   }
 }
 
-void RasterizerImpl::run_queued_band(int band, BandScratch& s) {
+void RasterizerImpl::run_queued_band(const std::deque<QueuedFill>& queue, int band, BandScratch& s) {
   const auto b = static_cast<std::size_t>(band);
   const int y_from = band_top_[b], y_to = band_top_[b + 1];
   for (std::uint32_t k = band_first_[b]; k < band_first_[b + 1]; ++k) {
-    const QueuedFill& q = queue_[band_entries_[k]];
+    const QueuedFill& q = queue[band_entries_[k]];
     if (k + 1 < band_first_[b + 1]) {
       // The next fill's entry, edges and tables are cold (other fills ran since they were built): ask for them now,
       // while this fill runs.
-      const QueuedFill& next = queue_[band_entries_[k + 1]];
+      const QueuedFill& next = queue[band_entries_[k + 1]];
       __builtin_prefetch(&next);
       __builtin_prefetch(next.edges.data());
       __builtin_prefetch(next.bucket_start.data());
       __builtin_prefetch(next.order.data());
-      __builtin_prefetch(next.sink.get());
+      __builtin_prefetch(next.sink);
     }
     const int y0 = std::max(y_from, q.y_min), y1 = std::min(y_to, q.y_max);
     switch (q.kind) {
       case QueuedFill::Kind::Analytic:
-        sweep_analytic_band(q.table(), q.rule, q.width, y0, y1, fixed_cells_, s, *q.sink);
+        sweep_analytic_band(q.table(), q.rule, q.width, y0, y1, q.fixed_cells, s, *q.sink);
         break;
       case QueuedFill::Kind::Aliased:
         sweep_aliased_rows(q.table(), q.rule, q.width, y0, y1, s, *q.sink);
@@ -290,12 +301,22 @@ void RasterizerImpl::flush() {
   run_queue();
 }
 
-void RasterizerImpl::run_queue() {
+void RasterizerImpl::finish_running() {
+  if (!running_) return;
+  pool_->finish();
+  drop_sinks(queues_[filling_ ^ 1], running_count_);
+  running_ = nullptr;
+  running_count_ = 0;
+}
+
+void RasterizerImpl::run_queue(bool in_background) {
+  finish_running();  // the fills queued before these come first in every row
   if (queued_ == 0) return;
+  std::deque<QueuedFill>& queue = queues_[filling_];
   // First the edges of the fills that wait unbuilt: chunks of consecutive fills on the pool's threads.
   auto build = [&](std::size_t from, std::size_t to, BandScratch& s) {
     for (std::size_t i = from; i < to; ++i) {
-      if (queue_[i].kind == QueuedFill::Kind::Unbuilt) build_queued(queue_[i], s);
+      if (queue[i].kind == QueuedFill::Kind::Unbuilt) build_queued(queue[i], s);
     }
   };
   const std::size_t chunks = pool_ && queued_work_ >= kMinQueuedFillWork
@@ -310,12 +331,16 @@ void RasterizerImpl::run_queue() {
     };
     pool_->run(static_cast<int>(chunks), job);
   }
-  auto visible = [](const QueuedFill& q) { return q.y_max > q.y_min; };  // Empty fills (and none else) have no rows
+  // The entries' rows and work, gathered once: the passes below then read a compact array, not an entry (several
+  // cache lines, cold in a queue of thousands of small fills) per pass.
+  fill_rows_.clear();
   int top = INT_MAX, bottom = INT_MIN;
   for (std::size_t i = 0; i < queued_; ++i) {
-    if (!visible(queue_[i])) continue;
-    top = std::min(top, queue_[i].y_min);
-    bottom = std::max(bottom, queue_[i].y_max);
+    const QueuedFill& q = queue[i];
+    if (q.y_max <= q.y_min) continue;  // Empty fills (and none else) have no rows
+    fill_rows_.push_back({static_cast<std::uint32_t>(i), q.y_min, q.y_max, q.work});
+    top = std::min(top, q.y_min);
+    bottom = std::max(bottom, q.y_max);
   }
   if (top >= bottom) {  // nothing inside the image
     last_flush_bands_ = 1;
@@ -330,12 +355,10 @@ void RasterizerImpl::run_queue() {
   const int rounds = std::min({kQueueRounds, rows / (kQueueMinBandRows * threads), BandPool::kMaxBands / threads});
   if (threads > 1 && queued_work_ >= kMinQueuedFillWork && rounds >= 1) {  // (a fill of this much is banded alone)
     row_work_.assign(static_cast<std::size_t>(rows) + 1, 0.0);
-    for (std::size_t i = 0; i < queued_; ++i) {
-      const QueuedFill& q = queue_[i];
-      if (!visible(q)) continue;
-      const double per_row = q.work / (q.y_max - q.y_min);
-      row_work_[static_cast<std::size_t>(q.y_min - top)] += per_row;
-      row_work_[static_cast<std::size_t>(q.y_max - top)] -= per_row;
+    for (const FillRows& f : fill_rows_) {
+      const double per_row = f.work / (f.y_max - f.y_min);
+      row_work_[static_cast<std::size_t>(f.y_min - top)] += per_row;
+      row_work_[static_cast<std::size_t>(f.y_max - top)] -= per_row;
     }
     double density = 0, total = 0;
     for (int r = 0; r < rows; ++r) {  // row_work_[r]: the work of rows [top, top + r] once summed
@@ -362,39 +385,52 @@ void RasterizerImpl::run_queue() {
   band_top_.push_back(bottom);
   const int bands = static_cast<int>(band_top_.size()) - 1;
   last_flush_bands_ = bands;
-  // Each band's list of the fills crossing it, in queue order (a band never looks at the others).
-  auto bands_of = [&](const QueuedFill& q, std::size_t& first, std::size_t& last) {
-    const auto tops = band_top_.begin();
-    first = static_cast<std::size_t>(std::upper_bound(tops, band_top_.end(), q.y_min) - tops) - 1;
-    last = static_cast<std::size_t>(std::lower_bound(tops, band_top_.end(), q.y_max) - tops);
-  };
-  band_first_.assign(static_cast<std::size_t>(bands) + 1, 0);
-  for (std::size_t i = 0; i < queued_; ++i) {
-    if (!visible(queue_[i])) continue;
-    std::size_t first = 0, last = 0;
-    bands_of(queue_[i], first, last);
-    for (std::size_t b = first; b < last; ++b) ++band_first_[b + 1];
+  // Each band's list of the fills crossing it, in queue order (a band never looks at the others). A fill's bands
+  // [first, last) are found once, by a table of each row's band.
+  row_band_.resize(static_cast<std::size_t>(rows));
+  for (int k = 0; k < bands; ++k) {
+    std::fill(row_band_.begin() + (band_top_[static_cast<std::size_t>(k)] - top),
+              row_band_.begin() + (band_top_[static_cast<std::size_t>(k) + 1] - top), static_cast<std::uint16_t>(k));
   }
-  for (std::size_t b = 1; b < band_first_.size(); ++b) band_first_[b] += band_first_[b - 1];
+  band_first_.assign(static_cast<std::size_t>(bands) + 1, 0);
+  for (FillRows& f : fill_rows_) {
+    f.first_band = row_band_[static_cast<std::size_t>(f.y_min - top)];
+    f.last_band = row_band_[static_cast<std::size_t>(f.y_max - 1 - top)] + 1;
+    for (int k = f.first_band; k < f.last_band; ++k) ++band_first_[static_cast<std::size_t>(k) + 1];
+  }
+  for (std::size_t k = 1; k < band_first_.size(); ++k) band_first_[k] += band_first_[k - 1];
   band_entries_.resize(band_first_.back());
   cursor_.assign(band_first_.begin(), band_first_.end() - 1);
-  for (std::size_t i = 0; i < queued_; ++i) {
-    if (!visible(queue_[i])) continue;
-    std::size_t first = 0, last = 0;
-    bands_of(queue_[i], first, last);
-    for (std::size_t b = first; b < last; ++b) band_entries_[cursor_[b]++] = static_cast<std::uint32_t>(i);
+  for (const FillRows& f : fill_rows_) {
+    for (int k = f.first_band; k < f.last_band; ++k) band_entries_[cursor_[static_cast<std::size_t>(k)]++] = f.entry;
+  }
+  band_job_ = {this, &queue};
+  if (in_background) {
+    // The workers draw this queue; the caller fills the other one meanwhile (a frame of small fills is mostly the
+    // caller's flattening and queueing: drawn in the background, their bands no longer wait for it).
+    pool_->start(bands, band_job_);
+    running_ = &queue;
+    running_count_ = queued_;
+    filling_ ^= 1;
+    queued_ = 0;
+    queued_bytes_ = 0;
+    queued_work_ = 0;
+    return;
   }
   if (bands == 1) {
-    run_queued_band(0, bands_[0]);
+    run_queued_band(queue, 0, bands_[0]);
   } else {
-    auto job = [&](int band, int worker) { run_queued_band(band, bands_[static_cast<std::size_t>(worker)]); };
-    pool_->run(bands, job);
+    pool_->run(bands, band_job_);
   }
   empty_queue();
 }
 
+void RasterizerImpl::drop_sinks(std::deque<QueuedFill>& queue, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) queue[i].drop_sink();
+}
+
 void RasterizerImpl::empty_queue() {
-  for (std::size_t i = 0; i < queued_; ++i) queue_[i].sink.reset();
+  drop_sinks(queues_[filling_], queued_);
   queued_ = 0;
   queued_bytes_ = 0;
   queued_work_ = 0;

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <vector>
 
@@ -98,11 +100,6 @@ double outline_cells(const std::vector<Edge>& edges);
 double band_work(const std::vector<Edge>& edges);
 /// band_work from its two sums: outline (summed |dy| + |dx|) and signed area.
 double work_of(double outline, double signed_area);
-/// A bound on band_work's estimate for an outline of at most kFewPoints points, from their box (each segment's
-/// outline is at most the box's width plus height, and the area it adds at most its height times the width); +inf
-/// for more points or points that are not finite.
-constexpr std::size_t kFewPoints = 16;
-double few_points_work_bound(const Polylines& lines);
 /// band_work's two sums taken over segments as they come (an outline before or while its edges are built).
 struct WorkSums {
   double outline = 0, signed_area = 0;
@@ -196,7 +193,8 @@ struct QueuedFill {
   Polylines lines;  // Unbuilt: the fill's outline, as fill_queued got it
   bool prebuilt = false;  // Unbuilt: edges, y_min and y_max are built already (the fill that started the queue)
   int x_base = 0, columns = 0;  // Dense, Ranged: the cells the edges reach (edge_columns)
-  bool fixed_cells = false;     // Dense, Ranged: rows in fixed-point cells (dense_fixed_cells)
+  bool fixed_cells = false;     // Dense, Ranged: rows in fixed-point cells (dense_fixed_cells); Analytic: rows of
+                                // few edges in fixed-point cells (the rasterizer's setting when it was built)
   FillRule rule = FillRule::NonZero;
   AntiAlias aa = AntiAlias::Analytic;
   int width = 0, height = 0;
@@ -205,10 +203,24 @@ struct QueuedFill {
   std::vector<Edge> edges;   // Analytic / Aliased / Sampled / Dense / Ranged
   std::vector<std::uint32_t> order, bucket_start;  // Analytic / Aliased: the edge table
   CoverageRecording recording;                      // Recorded
-  std::unique_ptr<CoverageSink> sink;
+  CoverageSink* sink = nullptr;  // the fill's sink while it waits: in sink_storage_, or owned_sink_
 
+  QueuedFill() = default;
+  QueuedFill(const QueuedFill&) = delete;  // (a sink in sink_storage_ stays where it was made: entries never move)
+  QueuedFill& operator=(const QueuedFill&) = delete;
+  ~QueuedFill() { drop_sink(); }
   EdgeTableView table() const { return {edges, order, bucket_start, y_min, y_max}; }
   std::size_t bytes() const;
+  /// Keeps `owned` if given, else a copy of `s` (in the entry's own storage where it fits: no allocation); false for
+  /// a sink that cannot be copied.
+  bool keep_sink(const CoverageSink& s, std::unique_ptr<CoverageSink> owned);
+  void drop_sink();
+
+ private:
+  static constexpr std::size_t kSinkStorageBytes = 128;  // SolidCompositor's size and then some
+  alignas(std::max_align_t) std::byte sink_storage_[kSinkStorageBytes];
+  bool sink_in_storage_ = false;
+  std::unique_ptr<CoverageSink> owned_sink_;
 };
 
 class RasterizerImpl {
@@ -243,8 +255,12 @@ class RasterizerImpl {
   int last_flush_bands_ = 0;
 
  private:
-  /// Draws the queue (flush() without ending the frame: the count of small fills drawn at once goes on).
-  void run_queue();
+  /// Draws the queue (flush() without ending the frame: the count of small fills drawn at once goes on). In the
+  /// background (`in_background`): the bands are handed to the workers and the call returns; the caller goes on
+  /// queueing into the other queue while they draw, and whatever draws next waits for them (finish_running).
+  void run_queue(bool in_background = false);
+  /// Waits for the queue drawn in the background, if any, taking its bands that are left on this thread.
+  void finish_running();
   /// Whether edges_ (clipped) have at most Rasterizer::kMaxExactCrossings crossings inside pixel rows
   /// (exact_budget.cpp).
   bool exact_within_budget(int height);
@@ -331,7 +347,12 @@ class RasterizerImpl {
   std::vector<float> mask_cells_;            // fill_mask: rows x stride float cells, zero between fills
   BoundarySweep boundary_;
   UnitWindingTest unit_winding_;             // exact mode: whether analytic is already exact
-  std::vector<QueuedFill> queue_;            // fill_queued: entries [0, queued_) wait for flush()
+  // fill_queued: entries [0, queued_) of queues_[filling_] wait for flush() (they never move); the other queue may
+  // be drawing in the background (running_, its first running_count_ entries).
+  std::deque<QueuedFill> queues_[2];
+  int filling_ = 0;
+  const std::deque<QueuedFill>* running_ = nullptr;
+  std::size_t running_count_ = 0;
   std::size_t queued_ = 0;
   std::size_t queued_bytes_ = 0;
   double queued_work_ = 0;
@@ -341,9 +362,27 @@ class RasterizerImpl {
   std::vector<double> band_cuts_;            // flush: the work above each band's bottom
   std::vector<std::uint32_t> band_first_;    // flush: band b runs entries band_entries_[band_first_[b] .. [b + 1])
   std::vector<std::uint32_t> band_entries_;
-  void run_queued_band(int band, BandScratch& s);
+  struct FillRows {  // flush: a visible entry's rows, work and bands [first_band, last_band)
+    std::uint32_t entry;
+    int y_min, y_max;
+    double work;
+    int first_band = 0, last_band = 0;
+  };
+  std::vector<FillRows> fill_rows_;
+  std::vector<std::uint16_t> row_band_;      // flush: the band of every row from the queue's top
+  void run_queued_band(const std::deque<QueuedFill>& queue, int band, BandScratch& s);
+  struct BandJob {  // the bands of a queue drawn in the background (it outlives run_queue)
+    RasterizerImpl* self = nullptr;
+    const std::deque<QueuedFill>* queue = nullptr;
+    void operator()(int band, int worker) const {
+      self->run_queued_band(*queue, band, self->bands_[static_cast<std::size_t>(worker)]);
+    }
+  };
+  BandJob band_job_;
   /// After a flush: the entries' sinks released (their buffers kept for the next fills), the counts at zero.
   void empty_queue();
+  /// The first `count` entries' sinks released.
+  static void drop_sinks(std::deque<QueuedFill>& queue, std::size_t count);
 };
 
 }  // namespace vraster::detail

@@ -16,7 +16,6 @@
 #include "raster/boundary.hpp"
 #include "raster/cells.hpp"
 #include "raster/fixed_cells.hpp"
-#include "geometry/point_bounds.hpp"
 #include "raster/supersample.hpp"
 #include "raster/unit_winding.hpp"
 #include "raster/rasterizer_p.hpp"
@@ -1170,17 +1169,6 @@ double detail::outline_cells(const std::vector<Edge>& edges) {
 
 double detail::work_of(double outline, double signed_area) {
   return outline + std::abs(signed_area) / kAreaPerUnit;
-}
-
-double detail::few_points_work_bound(const Polylines& lines) {
-  const std::size_t n = lines.points.size();
-  if (n == 0 || n > kFewPoints) return std::numeric_limits<double>::infinity();
-  const PointBounds box = point_bounds(lines.points);
-  if (!box.finite) return std::numeric_limits<double>::infinity();
-  const double w = box.x_hi - box.x_lo, h = box.y_hi - box.y_lo;
-  const double outline = static_cast<double>(n) * (w + h);
-  const double bound = work_of(outline, outline * w);
-  return std::isfinite(bound) ? bound : std::numeric_limits<double>::infinity();  // (NaN: not a bound)
 }
 
 double detail::band_work(const std::vector<Edge>& edges) {
