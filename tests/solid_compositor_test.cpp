@@ -271,4 +271,23 @@ TEST(SolidCompositor16, MatchesTheReferenceOnAGridAndRandomInputs) {
   for (int i = 0; i < 100000; ++i) ASSERT_TRUE(check(word(rng), word(rng), word(rng), word(rng)));
 }
 
+// Colour values that fall on a half round up (std::lround's rule, which the compositor's inline rounding keeps), and
+// a channel that is not a number counts as 0 instead of reaching the pixels as an undefined conversion.
+TEST(SolidCompositor8, HalvesRoundUpAndNotANumberIsZero) {
+  Image image(2, 1);
+  image.clear(Color::transparent());
+  SolidCompositor<std::uint8_t> comp(image, Color{0.5f, 0.25f, std::nanf(""), 1.0f});
+  comp.span(0, 0, 1, 1.0f);
+  EXPECT_EQ(int{image.pixel(0, 0)[0]}, 128);  // 127.5
+  EXPECT_EQ(int{image.pixel(0, 0)[1]}, 64);   // 63.75
+  EXPECT_EQ(int{image.pixel(0, 0)[2]}, 0);
+  EXPECT_EQ(int{image.pixel(0, 0)[3]}, 255);
+  Image16 deep(1, 1);
+  deep.clear(Color::transparent());
+  SolidCompositor<std::uint16_t> comp16(deep, Color{0.5f, 1.0f, 0.0f, 1.0f});
+  comp16.span(0, 0, 1, 1.0f);
+  EXPECT_EQ(int{deep.pixel(0, 0)[0]}, 32768);  // 32767.5
+  EXPECT_EQ(int{deep.pixel(0, 0)[1]}, 65535);
+}
+
 }  // namespace vraster
