@@ -46,15 +46,18 @@ BandPool::~BandPool() {
 }
 
 // Claims bands of the published run one at a time and runs them.
-void BandPool::take_bands(int worker) {
+int BandPool::take_bands(int worker) {
+  int taken = 0;
   std::uint64_t word = claim_.load(std::memory_order_acquire);
   while (next_of(word) < bands_of(word)) {
     if (!claim_.compare_exchange_weak(word, word + 1, std::memory_order_acq_rel, std::memory_order_acquire)) continue;
     // The claim succeeded, so this run is not over: job_ and call_ are still this run's.
     call_(job_, next_of(word), worker);
     done_.fetch_add(1, std::memory_order_release);
+    ++taken;
     word = claim_.load(std::memory_order_acquire);
   }
+  return taken;
 }
 
 void BandPool::start_erased(int bands, void* job, Call call) {
@@ -74,9 +77,9 @@ void BandPool::start_erased(int bands, void* job, Call call) {
   if (sleepers_.load() > 0) wake_.notify_all();
 }
 
-void BandPool::finish() {
-  if (bands_ == 0) return;
-  take_bands(0);
+int BandPool::finish() {
+  if (bands_ == 0) return 0;
+  const int taken = take_bands(0);
   // Bands claimed by workers may still be running.
   for (int spins = 0; done_.load(std::memory_order_acquire) < bands_; ++spins) {
     if (spins < 4096) {
@@ -86,6 +89,7 @@ void BandPool::finish() {
     }
   }
   bands_ = 0;
+  return taken;
 }
 
 void BandPool::worker_loop(int worker) {

@@ -36,13 +36,14 @@ class BandPool {
   void start(int bands, Job& job) {
     start_erased(bands, &job, [](void* j, int band, int worker) { (*static_cast<Job*>(j))(band, worker); });
   }
-  void finish();
+  /// Returns how many of the run's bands this thread took (all of them: no worker got to the run before it).
+  int finish();
   static constexpr int kMaxBands = 0xFFFF;
 
  private:
   using Call = void (*)(void* job, int band, int worker);
   void start_erased(int bands, void* job, Call call);
-  void take_bands(int worker);
+  int take_bands(int worker);  // returns how many it took
   void worker_loop(int worker);
 
   // The claim word: generation (32 bits) | band count (16) | next band (16). A worker claims band i of the run it

@@ -168,7 +168,8 @@ void RasterizerImpl::fill_queued(const Polylines& lines, FillRule rule, AntiAlia
   // drawn at once, unless it starts a queue for a frame of many small fills.
   // Whether a fill of this much work is drawn at once; if so, it counts towards the frame's drawn_at_once_.
   auto at_once = [&](double work) {
-    if (queued_ > 0 || running_ || work >= kMinQueuedFillWork || drawn_at_once_ >= kWorkDrawnBeforeQueue) return false;
+    if (queued_ > 0 || running_ || work >= kMinQueuedFillWork) return false;
+    if (drawn_at_once_ >= kWorkDrawnBeforeQueue && !workers_starved_) return false;
     drawn_at_once_ += work;
     return true;
   };
@@ -299,13 +300,17 @@ void RasterizerImpl::run_queued_band(const std::deque<QueuedFill>& queue, int ba
 }
 
 void RasterizerImpl::flush() {
-  drawn_at_once_ = 0;  // a flush ends a frame, or a stretch of drawing the queue cannot hold
   run_queue();
+  drawn_at_once_ = 0;  // a flush ends a frame, or a stretch of drawing the queue cannot hold
+  workers_starved_ = false;  // (each frame tries the workers again)
 }
 
 void RasterizerImpl::finish_running() {
   if (!running_) return;
-  pool_->finish();
+  // No worker got to a queue drawn in the background before the caller came back for it: the other cores are busy
+  // (or this process has no other). Until the frame ends, queues then run in the open and small fills are drawn at
+  // once, as without threads: queued, they would cost without paying.
+  if (pool_->finish() == running_bands_) workers_starved_ = true;
   drop_sinks(queues_[filling_ ^ 1], running_count_);
   running_ = nullptr;
   running_count_ = 0;
@@ -407,11 +412,12 @@ void RasterizerImpl::run_queue(bool in_background) {
     for (int k = f.first_band; k < f.last_band; ++k) band_entries_[cursor_[static_cast<std::size_t>(k)]++] = f.entry;
   }
   band_job_ = {this, &queue};
-  if (in_background) {
+  if (in_background && !workers_starved_) {
     // The workers draw this queue; the caller fills the other one meanwhile (a frame of small fills is mostly the
     // caller's flattening and queueing: drawn in the background, their bands no longer wait for it).
     pool_->start(bands, band_job_);
     running_ = &queue;
+    running_bands_ = bands;
     running_count_ = queued_;
     filling_ ^= 1;
     queued_ = 0;

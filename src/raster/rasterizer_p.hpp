@@ -353,6 +353,8 @@ class RasterizerImpl {
   int filling_ = 0;
   const std::deque<QueuedFill>* running_ = nullptr;
   std::size_t running_count_ = 0;
+  int running_bands_ = 0;
+  bool workers_starved_ = false;  // a queue in the background was drawn by the caller alone (finish_running)
   std::size_t queued_ = 0;
   std::size_t queued_bytes_ = 0;
   double queued_work_ = 0;
