@@ -230,7 +230,7 @@ class Rasterizer {
   void fill_queued(const Polylines& lines, FillRule rule, AntiAlias aa, int width, int height, CoverageSink& sink);
   /// Runs the queued fills (nothing when none is queued).
   void flush();
-  /// Fills waiting for flush() (for tests and tools).
+  /// Fills waiting in the queue (for tests and tools; a queue being drawn in the background no longer counts).
   std::size_t queued_fills() const;
   /// How many bands of rows the last flush ran its queue in (1: on the caller's thread alone; 0: no flush yet).
   int last_flush_bands() const;
