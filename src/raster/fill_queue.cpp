@@ -312,7 +312,7 @@ void RasterizerImpl::finish_running() {
   // once, as without threads: queued, they would cost without paying.
   if (pool_->finish() == running_bands_) workers_starved_ = true;
   drop_sinks(queues_[filling_ ^ 1], running_count_);
-  running_ = nullptr;
+  running_ = false;
   running_count_ = 0;
 }
 
@@ -416,7 +416,7 @@ void RasterizerImpl::run_queue(bool in_background) {
     // The workers draw this queue; the caller fills the other one meanwhile (a frame of small fills is mostly the
     // caller's flattening and queueing: drawn in the background, their bands no longer wait for it).
     pool_->start(bands, band_job_);
-    running_ = &queue;
+    running_ = true;
     running_bands_ = bands;
     running_count_ = queued_;
     filling_ ^= 1;

@@ -348,10 +348,10 @@ class RasterizerImpl {
   BoundarySweep boundary_;
   UnitWindingTest unit_winding_;             // exact mode: whether analytic is already exact
   // fill_queued: entries [0, queued_) of queues_[filling_] wait for flush() (they never move); the other queue may
-  // be drawing in the background (running_, its first running_count_ entries).
+  // be drawing in the background (running_: queues_[filling_ ^ 1], its first running_count_ entries).
   std::deque<QueuedFill> queues_[2];
   int filling_ = 0;
-  const std::deque<QueuedFill>* running_ = nullptr;
+  bool running_ = false;
   std::size_t running_count_ = 0;
   int running_bands_ = 0;
   bool workers_starved_ = false;  // a queue in the background was drawn by the caller alone (finish_running)
