@@ -627,8 +627,8 @@ TEST(Threads, AFrameOfManyMediumFillsStartsAQueue) {
 // gives the pixels of one thread.
 TEST(Threads, QueueRunsOnSetThreadsDestructionAndMemoryBudget) {
   const FillOptions options;
-  // A zigzag of 8,000 edges, about half a MiB queued (its points and edges): the queue's budget of 2 MiB is
-  // reached within five such fills.
+  // A zigzag of 8,000 edges, about half a MiB queued (its points and edges): the queue's budget of 1 MiB is
+  // reached within three such fills.
   Path zigzag;
   zigzag.move_to({0, 0});
   for (int i = 0; i < 8000; ++i) {
@@ -687,7 +687,7 @@ TEST(Threads, QueuesDrawnInTheBackgroundKeepThePaintersOrder) {
     p.close();
     tiny.push_back(p);
   }
-  // A zigzag of 40,000 edges over the whole device, more than the queue's budget of 2 MiB on its own: queued, it is
+  // A zigzag of 40,000 edges over the whole device, more than the queue's budget of 1 MiB on its own: queued, it is
   // drawn in the background at once, and the small fills after it (which the frame has not yet shown to be many)
   // must wait for it rather than be drawn at once.
   Path zigzag;

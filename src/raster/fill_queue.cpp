@@ -45,10 +45,11 @@ constexpr double kRecordedPixelsPerUnit = 16;
 // Memory the queue may hold (outlines, edge tables and recordings) before fill_queued runs it. What a fill queues
 // is written when the queue is built and read back when its bands run: past the cache, that is a trip to memory
 // each way. At 16 MiB, cubic_256 (11 MiB of outlines and edges a frame) took 11-18 % longer queued than drawn fill
-// by fill on one thread, and gave 1.66-1.79x on 2 threads; at 2 MiB (about the two cores' L2) 1.80-1.88x, the
-// other scenes level. At 1 MiB a frame of small fills (cubic_16) ran the queue three times and lost 15 % to waking
-// the threads (docs/performance.md, twenty-third session).
-constexpr std::size_t kQueueBudgetBytes = std::size_t{2} << 20;
+// by fill on one thread; 2 MiB was best on the Zen 3 host (twenty-third session). Since queues are drawn in the
+// background (so a small budget no longer means waiting for the threads to wake), 1 MiB, about one core's L2 on the
+// Zen 5 host, keeps cubic_256's two threads at 1.05-1.2x one thread's CPU time where 2 MiB took 1.2-1.35x, and
+// two-thread text_outlines from 0.84-0.92x to 1.1x (docs/performance.md, thirtieth session).
+constexpr std::size_t kQueueBudgetBytes = std::size_t{1} << 20;
 // Building the queue's fills: chunks of consecutive fills per thread, several so that the threads finish together.
 constexpr int kBuildChunksPerThread = 8;
 
