@@ -1,7 +1,9 @@
 // Fixed-point cells (src/raster/fixed_cells.hpp): the row sweep's rows of at most 31 active edges sum their pieces in
-// 32-bit integers of 2^-26 of a pixel. Properties: within kFixedCellsError of the double cells for every rule, the
-// same bits as the double cells where a row has more edges, exact where the areas are whole units, the AVX2 split's
-// integers equal to the portable ones, and every piece's running total within half a unit of its double shares'.
+// 32-bit integers of 2^-26 of a pixel, rows of more (up to kWideRowEdges) in 64-bit integers of 2^-36. Properties:
+// within kFixedCellsError of the double cells for every rule (rows of many edges within kWideCellsError), the same
+// bits as the double cells where a row has more than kWideRowEdges edges, exact where the areas are whole units, the
+// AVX2 split's integers equal to the portable ones, the AVX2 and portable sweeps giving the same bits, and every
+// piece's running total within half a unit of its double shares'.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -84,33 +86,100 @@ TEST(FixedCells, CoverageIsExactlyZeroWhereNothingIsDrawn) {
   }
 }
 
-TEST(FixedCells, RowsOfMoreEdgesKeepTheDoubleCells) {
-  // A 40-point star: its middle rows hold more than kFixedRowEdges edges and are the double cells' to the bit; its
-  // tips have two edges a row and take the fixed-point cells.
-  Polygon star;
-  const int points = 40;
-  for (int i = 0; i < points; ++i) {
-    const double a = 2 * 3.141592653589793 * (i * 17 % points) / points;
-    star.push_back({100 + 90 * std::cos(a), 100 + 90 * std::sin(a)});
-  }
-  const std::vector<Polygon> shapes{star};
-  const int w = 200, h = 200;
-  std::vector<Edge> edges;
+// The rows of a polygon holding more than `edges` edges (with a piece in the row).
+std::vector<int> rows_of_more_edges(const std::vector<Polygon>& shapes, int w, int h, std::size_t edges) {
+  std::vector<Edge> built;
   int y_min = 0, y_max = 0;
-  detail::build_edges(exact::polylines_of(shapes), w, h, edges, y_min, y_max);
+  detail::build_edges(exact::polylines_of(shapes), w, h, built, y_min, y_max);
+  std::vector<int> rows;
+  for (int y = 0; y < h; ++y) {
+    std::size_t active = 0;
+    for (const Edge& e : built) active += e.y0 < y + 1.0 && e.y1 > y ? 1 : 0;
+    if (active > edges) rows.push_back(y);
+  }
+  return rows;
+}
+
+// A star polygon of `points` points, each joined to the one `step` points on.
+Polygon star_polygon(int points, int step, double cx, double cy, double r) {
+  Polygon star;
+  for (int i = 0; i < points; ++i) {
+    const double a = 2 * 3.141592653589793 * (i * step % points) / points + 0.1;
+    star.push_back({cx + r * std::cos(a), cy + r * std::sin(a)});
+  }
+  return star;
+}
+
+TEST(FixedCells, RowsOfManyEdgesTakeWideCellsWithinTheBound) {
+  // Stars whose middle rows hold more than kFixedRowEdges edges (up to several hundred): those rows are summed in
+  // wide cells, within kWideCellsError of the double cells and exactly 0 or 1 where the exact area is; the tips
+  // (two edges a row) take the 32-bit cells.
+  const int w = 200, h = 200;
+  const std::vector<std::vector<Polygon>> scenes{{star_polygon(40, 17, 100, 100, 90)},
+                                                 {star_polygon(301, 140, 101.3, 99.1, 95)},
+                                                 {star_polygon(97, 13, 90, 110, 80), star_polygon(60, 29, 120, 95, 70)}};
+  double worst = 0;
+  for (std::size_t it = 0; it < scenes.size(); ++it) {
+    const std::vector<Polygon>& shapes = scenes[it];
+    const std::vector<int> crowded = rows_of_more_edges(shapes, w, h, detail::kFixedRowEdges);
+    EXPECT_GT(crowded.size(), 50u) << "scene " << it;
+    for (const FillRule rule : kRules) {
+      const CoverageGrid fixed = row_sweep(shapes, rule, w, h, true);
+      const CoverageGrid doubles = row_sweep(shapes, rule, w, h, false);
+      const double d = largest_difference(fixed, doubles, w, h);
+      ASSERT_LE(d, detail::kWideCellsError) << "scene " << it << " rule " << to_string(rule);
+      worst = std::max(worst, d);
+      const std::vector<double> want = exact::trapezoid_coverage(shapes, rule, w, h);
+      for (const int y : crowded) {
+        for (int x = 0; x < w; ++x) {
+          const double exact_area = want[static_cast<std::size_t>(y) * w + x];
+          if (exact_area == 0 || exact_area == 1) {
+            ASSERT_EQ(double{fixed.at(x, y)}, exact_area) << "scene " << it << " rule " << to_string(rule)
+                                                          << " pixel " << x << "," << y;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(worst, 0.0);  // the integer rows were used (their rounding shows somewhere)
+}
+
+TEST(FixedCells, RowsOfMoreEdgesThanWideCellsHoldKeepTheDoubleCells) {
+  // A comb of kWideRowEdges + 16 teeth across rows 2 .. 9: those rows keep the double cells, to the bit.
+  const int w = 1100, h = 12;
+  Polygon comb;
+  const int teeth = static_cast<int>(detail::kWideRowEdges) / 2 + 8;
+  for (int i = 0; i < teeth; ++i) {
+    const double x = 5 + 1000.0 * i / teeth;
+    comb.push_back({x, 2.3});
+    comb.push_back({x + 0.5 * 1000.0 / teeth, 9.7});
+  }
+  comb.push_back({1050, 11});
+  comb.push_back({5, 11});
+  const std::vector<Polygon> shapes{comb};
+  const std::vector<int> crowded = rows_of_more_edges(shapes, w, h, detail::kWideRowEdges);
+  ASSERT_EQ(crowded.size(), 8u);
   for (const FillRule rule : {FillRule::NonZero, FillRule::EvenOdd}) {
     const CoverageGrid fixed = row_sweep(shapes, rule, w, h, true);
     const CoverageGrid doubles = row_sweep(shapes, rule, w, h, false);
-    int crowded = 0;
-    for (int y = 0; y < h; ++y) {
-      std::size_t active = 0;  // edges with a piece in row y
-      for (const Edge& e : edges) active += e.y0 < y + 1.0 && e.y1 > y ? 1 : 0;
-      if (active <= detail::kFixedRowEdges) continue;
-      ++crowded;
+    for (const int y : crowded) {
       for (int x = 0; x < w; ++x) ASSERT_EQ(fixed.at(x, y), doubles.at(x, y)) << "row " << y << " pixel " << x;
     }
-    EXPECT_GT(crowded, 50) << to_string(rule);
-    EXPECT_LE(largest_difference(fixed, doubles, w, h), detail::kFixedCellsError);
+  }
+}
+
+TEST(FixedCells, WideCellsSweepTheSameBitsWithAndWithoutAvx2) {
+  if (!detail::cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor";
+  const int w = 220, h = 210;
+  const std::vector<Polygon> shapes{star_polygon(151, 67, 110, 105, 100)};
+  for (const FillRule rule : kRules) {
+    const CoverageGrid simd = row_sweep(shapes, rule, w, h, true);
+    detail::portable_kernels_forced() = true;
+    const CoverageGrid portable = row_sweep(shapes, rule, w, h, true);
+    detail::portable_kernels_forced() = false;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) ASSERT_EQ(simd.at(x, y), portable.at(x, y)) << to_string(rule) << " " << x << "," << y;
+    }
   }
 }
 
@@ -157,54 +226,65 @@ TEST(FixedCells, ExactModeKeepsTheDoubleCells) {
   }
 }
 
-// A piece's shares as the fixed-point cells get them, and the running totals of its double shares (accumulate_piece).
+// A piece's shares as the fixed-point (or wide) cells get them, and the running totals of its double shares
+// (accumulate_piece).
+template <class Cell>
 struct PieceShares {
-  std::vector<std::int32_t> fixed;
+  std::vector<Cell> fixed;
   std::vector<double> totals;
 };
 
-PieceShares shares_of(double xa, double xb, double h) {
+template <class Cell>
+PieceShares<Cell> shares_of(double xa, double xb, double h) {
   const int cells = 64;
-  std::vector<std::int32_t> fixed(cells + detail::kFixedBlock, 0);
+  std::vector<Cell> fixed(cells + detail::kFixedBlock, 0);
   std::vector<double> doubles(cells + detail::kFixedBlock, 0.0);
   detail::accumulate_piece_fixed(fixed.data(), xa, xb, h);
   detail::accumulate_piece(doubles.data(), xa, xb, h);
-  PieceShares s{fixed, std::vector<double>(doubles.size())};
+  PieceShares<Cell> s{fixed, std::vector<double>(doubles.size())};
   double total = 0;
   for (std::size_t i = 0; i < doubles.size(); ++i) s.totals[i] = total += doubles[i];
   return s;
 }
 
-TEST(FixedCells, EveryPieceIsWithinHalfAUnitUpToEveryCell) {
+template <class Cell>
+void expect_every_piece_within_half_a_unit(double unit) {
   std::mt19937 rng(77);
   std::uniform_real_distribution<double> x(0.0, 50.0), span(0.0, 9.0), height(-1.0, 1.0);
   for (int it = 0; it < 20000; ++it) {
     const double xa = x(rng);
     const double xb = it % 3 == 0 ? xa + span(rng) * 0.05 : xa + span(rng);  // inside one cell, and longer
     const double h = it % 5 == 0 ? std::copysign(1.0, height(rng)) : height(rng);
-    const PieceShares s = shares_of(it % 2 ? xa : xb, it % 2 ? xb : xa, h);
+    const PieceShares<Cell> s = shares_of<Cell>(it % 2 ? xa : xb, it % 2 ? xb : xa, h);
     std::int64_t running = 0;
     for (std::size_t i = 0; i < s.fixed.size(); ++i) {
       running += s.fixed[i];
-      // Half a unit, plus the double shares' own round-off in the long sums.
-      ASSERT_LE(std::abs(static_cast<double>(running) - s.totals[i] * detail::kFixedUnit), 0.5 + 1e-6)
+      // Half a unit, plus the double shares' own round-off in the long sums (under 1e-14 of a pixel).
+      ASSERT_LE(std::abs(static_cast<double>(running) - s.totals[i] * unit), 0.5 + 1e-14 * unit)
           << "piece " << xa << " .. " << xb << " height " << h << ", cell " << i;
     }
   }
 }
 
+TEST(FixedCells, EveryPieceIsWithinHalfAUnitUpToEveryCell) {
+  expect_every_piece_within_half_a_unit<std::int32_t>(detail::kFixedUnit);
+  expect_every_piece_within_half_a_unit<std::int64_t>(detail::kWideUnit);
+}
+
 #ifdef VRASTER_HAVE_AVX2_KERNELS
 // Four pieces split as the AVX2 sweep splits them (in a function compiled for AVX2).
-[[gnu::target("avx2")]] void add_lane(const detail::SplitLanes<true>& split, int i, std::int32_t* cells) {
+template <class Cell>
+[[gnu::target("avx2")]] void add_lane(const detail::SplitLanes<Cell>& split, int i, Cell* cells) {
   split.add_fixed(i, cells);
 }
 
-[[gnu::target("avx2")]] detail::SplitLanes<true> split_avx2(const double* xa, const double* xb, const double* h) {
-  return detail::SplitLanes<true>(_mm256_loadu_pd(xa), _mm256_loadu_pd(xb), _mm256_loadu_pd(h));
+template <class Cell>
+[[gnu::target("avx2")]] detail::SplitLanes<Cell> split_avx2(const double* xa, const double* xb, const double* h) {
+  return detail::SplitLanes<Cell>(_mm256_loadu_pd(xa), _mm256_loadu_pd(xb), _mm256_loadu_pd(h));
 }
 
-TEST(FixedCells, TheAvx2SplitGivesThePortableIntegers) {
-  if (!detail::cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor";
+template <class Cell>
+void expect_avx2_split_gives_the_portable_integers() {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> x(0.0, 40.0), span(0.0, 4.0), height(-1.0, 1.0);
   int long_pieces = 0;
@@ -216,20 +296,26 @@ TEST(FixedCells, TheAvx2SplitGivesThePortableIntegers) {
       xb[i] = std::max(xb[i], 0.0);
       h[i] = height(rng);
     }
-    const detail::SplitLanes<true> split = split_avx2(xa, xb, h);
+    const detail::SplitLanes<Cell> split = split_avx2<Cell>(xa, xb, h);
     for (int i = 0; i < 4; ++i) {
-      std::vector<std::int32_t> portable(64, 0);
+      std::vector<Cell> portable(64, 0);
       detail::accumulate_piece_fixed(portable.data(), xa[i], xb[i], h[i]);
       if (split.past[i] > 2) {  // long pieces: both sweeps call accumulate_long_piece_fixed
         ++long_pieces;
         continue;
       }
-      std::vector<std::int32_t> simd(64, 0);
+      std::vector<Cell> simd(64, 0);
       add_lane(split, i, simd.data());  // lane i's four shares, as both AVX2 sweeps add them
       ASSERT_EQ(simd, portable) << "piece " << xa[i] << " .. " << xb[i] << " height " << h[i];
     }
   }
   EXPECT_GT(long_pieces, 100);
+}
+
+TEST(FixedCells, TheAvx2SplitGivesThePortableIntegers) {
+  if (!detail::cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this processor";
+  expect_avx2_split_gives_the_portable_integers<std::int32_t>();
+  expect_avx2_split_gives_the_portable_integers<std::int64_t>();
 }
 #endif
 

@@ -342,21 +342,44 @@ struct Split4 {
   return _mm256_cvtpd_epi32(_mm256_mul_pd(v, _mm256_set1_pd(0x1p26)));
 }
 
-// A split's four lanes in memory, with the pieces' ends and heights, to add the pieces one at a time. kFixed: the
-// shares in fixed-point cells' units (fixed_cells.hpp: each cell gets the difference of the rounded running totals)
-// instead of kept as doubles.
-template <bool kFixed = false>
+// Four shares in wide cells' units (fixed_cells.hpp's kWideUnit, 2^36), rounded to nearest even as to_wide rounds:
+// the scaled share plus 1.5 * 2^52 is rounded to a whole number by the addition (|share| < 2^51), whose low bits
+// are then that number.
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256i wide_units(__m256d v) {
+  const __m256d magic = _mm256_set1_pd(0x1.8p52);
+  const __m256d shifted = _mm256_add_pd(_mm256_mul_pd(v, _mm256_set1_pd(0x1p36)), magic);
+  return _mm256_sub_epi64(_mm256_castpd_si256(shifted), _mm256_castpd_si256(magic));
+}
+
+// A split's four lanes in memory, with the pieces' ends and heights, to add the pieces one at a time. Cell
+// std::int32_t or std::int64_t: the shares in fixed-point or wide cells' units (fixed_cells.hpp: each cell gets the
+// difference of the rounded running totals) instead of kept as doubles.
+template <class Cell = double>
 struct SplitLanes {
+  static constexpr bool kFixed = !std::is_same_v<Cell, double>;
   alignas(32) double xa[4], xb[4], h[4], add0[4], add1[4], then1[4], add2[4], then2[4], add3[4];
   alignas(16) std::int32_t first[4], past[4];
-  // kFixed: lane i's four shares, cells first .. first + 3 (one 16-byte addition a piece).
-  alignas(16) std::int32_t fixed[4][4];
+  // kFixed: lane i's four shares, cells first .. first + 3 (one 16- or 32-byte addition a piece).
+  alignas(32) Cell fixed[4][4];
   [[gnu::target("avx2"), gnu::always_inline]] SplitLanes(__m256d from_x, __m256d to_x, __m256d height) {
     const Split4 p = split4(from_x, to_x, height);
     _mm256_store_pd(xa, from_x);
     _mm256_store_pd(xb, to_x);
     _mm256_store_pd(h, height);
-    if constexpr (kFixed) {
+    if constexpr (std::is_same_v<Cell, std::int64_t>) {
+      // As below, in 64-bit lanes: the four totals rounded, their differences, transposed to a piece per row.
+      const __m256d c0 = p.add0, c1 = _mm256_add_pd(_mm256_add_pd(c0, p.add1), p.then1);
+      const __m256d c2 = _mm256_add_pd(_mm256_add_pd(c1, p.add2), p.then2), c3 = _mm256_add_pd(c2, p.add3);
+      const __m256i q0 = wide_units(c0), q1 = wide_units(c1), q2 = wide_units(c2), q3 = wide_units(c3);
+      const __m256i s0 = q0, s1 = _mm256_sub_epi64(q1, q0), s2 = _mm256_sub_epi64(q2, q1);
+      const __m256i s3 = _mm256_sub_epi64(q3, q2);
+      const __m256i t0 = _mm256_unpacklo_epi64(s0, s1), t1 = _mm256_unpacklo_epi64(s2, s3);  // lanes 0, 2
+      const __m256i t2 = _mm256_unpackhi_epi64(s0, s1), t3 = _mm256_unpackhi_epi64(s2, s3);  // lanes 1, 3
+      _mm256_store_si256(reinterpret_cast<__m256i*>(fixed[0]), _mm256_permute2x128_si256(t0, t1, 0x20));
+      _mm256_store_si256(reinterpret_cast<__m256i*>(fixed[1]), _mm256_permute2x128_si256(t2, t3, 0x20));
+      _mm256_store_si256(reinterpret_cast<__m256i*>(fixed[2]), _mm256_permute2x128_si256(t0, t1, 0x31));
+      _mm256_store_si256(reinterpret_cast<__m256i*>(fixed[3]), _mm256_permute2x128_si256(t2, t3, 0x31));
+    } else if constexpr (kFixed) {
       // The shares' running totals rounded (accumulate_split_fixed's sums, in its order), then their differences.
       const __m256d c0 = p.add0, c1 = _mm256_add_pd(_mm256_add_pd(c0, p.add1), p.then1);
       const __m256d c2 = _mm256_add_pd(_mm256_add_pd(c1, p.add2), p.then2), c3 = _mm256_add_pd(c2, p.add3);
@@ -380,11 +403,17 @@ struct SplitLanes {
     _mm_store_si128(reinterpret_cast<__m128i*>(first), p.first);
     _mm_store_si128(reinterpret_cast<__m128i*>(past), p.past);
   }
-  /// kFixed: lane i's piece within three cells added to the fixed-point cells at acc (its four shares at once).
-  [[gnu::target("avx2"), gnu::always_inline]] void add_fixed(int i, std::int32_t* acc) const {
-    auto* const cells = reinterpret_cast<__m128i*>(acc + first[i]);
-    const __m128i shares = _mm_load_si128(reinterpret_cast<const __m128i*>(fixed[i]));
-    _mm_storeu_si128(cells, _mm_add_epi32(_mm_loadu_si128(cells), shares));
+  /// kFixed: lane i's piece within three cells added to the cells at acc (its four shares at once).
+  [[gnu::target("avx2"), gnu::always_inline]] void add_fixed(int i, Cell* acc) const {
+    if constexpr (std::is_same_v<Cell, std::int64_t>) {
+      auto* const cells = reinterpret_cast<__m256i*>(acc + first[i]);
+      const __m256i shares = _mm256_load_si256(reinterpret_cast<const __m256i*>(fixed[i]));
+      _mm256_storeu_si256(cells, _mm256_add_epi64(_mm256_loadu_si256(cells), shares));
+    } else {
+      auto* const cells = reinterpret_cast<__m128i*>(acc + first[i]);
+      const __m128i shares = _mm_load_si128(reinterpret_cast<const __m128i*>(fixed[i]));
+      _mm_storeu_si128(cells, _mm_add_epi32(_mm_loadu_si128(cells), shares));
+    }
   }
   /// Lane i's piece added to the cells at acc (accumulate_piece's numbers, in its order).
   [[gnu::target("avx2"), gnu::always_inline]] void add(int i, double* acc) const {

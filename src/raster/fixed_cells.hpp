@@ -6,13 +6,14 @@
 // piece's shares are the differences of its running total rounded at every cell, so up to any cell a piece adds
 // what it should within half a unit (2^-27), and a pixel's running sum is within kFixedRowEdges half units of the
 // double cells': with the snap of residues (kFixedSnapUnits) and the coverage's rounding to float, kFixedCellsError
-// (5.4e-7; docs/design.md, "Fixed-point cells"). Rows of more edges keep the double cells: their sums could pass
-// 2^31, and the rounding would add up.
+// (5.4e-7; docs/design.md, "Fixed-point cells"). Rows of more edges take the wide cells below (64-bit, finer
+// units): in 32 bits their sums could pass 2^31, and the rounding would add up.
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include "raster/cells.hpp"
 #include "raster/cpu.hpp"
@@ -51,6 +52,45 @@ inline std::int32_t to_fixed(double v) {
 #endif
 }
 
+// Wide cells: rows of more than kFixedRowEdges active edges (a star's, a line of text set as one path) in 64-bit
+// integers of 2^-36 of a pixel. The shares are rounded as the 32-bit cells' are (half a unit per piece, then the
+// snap), in units small enough that a row of kWideRowEdges edges stays well inside kFixedCellsError, and a running
+// sum of that many whole units is far inside 63 bits. Rows of more edges keep the double cells.
+constexpr int kWideShift = 36;
+constexpr std::int64_t kWideOne = std::int64_t{1} << kWideShift;
+constexpr double kWideUnit = 0x1p36;
+constexpr std::size_t kWideRowEdges = 16384;
+constexpr std::int64_t kWideSnapUnits = (kWideRowEdges + 1) / 2;
+// The coverage is the unit count shifted to 24 bits (exact in a float): truncation below 2^-24.
+constexpr int kWideFloatShift = kWideShift - 24;
+constexpr double kWideCellsError =
+    static_cast<double>(kWideRowEdges + 1) * 0x1p-37 + static_cast<double>(kWideSnapUnits) * 0x1p-36 + 0x1p-24;
+static_assert(kWideCellsError <= kFixedCellsError, "wide rows keep the fixed-point rows' bound");
+// A running sum of kWideRowEdges pieces of up to two whole units each fits 63 bits; the AVX2 conversion (wide_units)
+// needs the scaled shares below 2^51.
+static_assert(static_cast<double>(kWideRowEdges) * 2 * kWideUnit < 0x1p62 && 2 * kWideUnit < 0x1p51);
+
+/// v (a share of a pixel's area, |v| <= 2) in units of 2^-36, rounded to nearest (even on ties), as wide_units rounds
+/// four at a time.
+inline std::int64_t to_wide(double v) {
+#if defined(__SSE2__) || defined(_M_X64)
+  return _mm_cvtsd_si64(_mm_set_sd(v * kWideUnit));
+#else
+  return static_cast<std::int64_t>(std::llrint(v * kWideUnit));
+#endif
+}
+
+/// A share in the units of the cell type: fixed-point (32-bit) or wide (64-bit) cells.
+template <class Cell>
+inline Cell to_units(double v) {
+  if constexpr (std::is_same_v<Cell, std::int64_t>) {
+    return to_wide(v);
+  } else {
+    static_assert(std::is_same_v<Cell, std::int32_t>);
+    return to_fixed(v);
+  }
+}
+
 /// Coverage of the running sum s under R, in units (0 .. kFixedOne): rule_coverage's values, in integers, before the
 /// snap.
 template <FillRule R>
@@ -84,7 +124,8 @@ inline float fixed_coverage(std::int32_t s) {
 /// accumulate_long_piece in fixed point, for a piece over more than three cells: the shares' running total is rounded
 /// at every cell instead of each share on its own, so the row's sum past the piece is off by one rounding, not one
 /// per cell it crosses. Both sweeps (AVX2 and portable) add a long piece this way.
-inline void accumulate_long_piece_fixed(std::int32_t* acc, double xa, double xb, double h, int i0, int i1) {
+template <class Cell>
+inline void accumulate_long_piece_fixed(Cell* acc, double xa, double xb, double h, int i0, int i1) {
   const double per_x = h / (xb - xa);
   const double f0 = (i0 + 1) - xa;
   const double h0 = per_x * f0, m0 = 1.0 - 0.5 * f0;
@@ -93,39 +134,42 @@ inline void accumulate_long_piece_fixed(std::int32_t* acc, double xa, double xb,
   const double h1 = per_x * f1;
   // Totals of the shares up to each cell (accumulate_long_piece's shares, in its order).
   double total = h0 * (1.0 - m0);
-  std::int32_t done = to_fixed(total);
+  Cell done = to_units<Cell>(total);
   acc[i0] += done;
   total = h0 + half;
   for (int i = i0 + 1; i < i1; ++i) {
-    const std::int32_t now = to_fixed(total);
+    const Cell now = to_units<Cell>(total);
     acc[i] += now - done;
     done = now;
     total += i + 1 < i1 ? 2.0 * half : half;
   }
   total += h1 * (1.0 - 0.5 * f1);
-  std::int32_t now = to_fixed(total);
+  Cell now = to_units<Cell>(total);
   acc[i1] += now - done;
   done = now;
   total += h1 * (0.5 * f1);
-  now = to_fixed(total);
+  now = to_units<Cell>(total);
   acc[i1 + 1] += now - done;
 }
 
 /// The shares of a piece within three cells (split4's add0 .. add3), from cell i0 on: the running totals rounded and
 /// their differences added, so that the piece's sum up to any cell is off by one rounding.
-inline void accumulate_split_fixed(std::int32_t* acc, int i0, double add0, double add1, double then1, double add2,
+template <class Cell>
+inline void accumulate_split_fixed(Cell* acc, int i0, double add0, double add1, double then1, double add2,
                                    double then2, double add3) {
   const double c0 = add0, c1 = (c0 + add1) + then1, c2 = (c1 + add2) + then2, c3 = c2 + add3;
-  const std::int32_t q0 = to_fixed(c0), q1 = to_fixed(c1), q2 = to_fixed(c2), q3 = to_fixed(c3);
+  const Cell q0 = to_units<Cell>(c0), q1 = to_units<Cell>(c1), q2 = to_units<Cell>(c2), q3 = to_units<Cell>(c3);
   acc[i0] += q0;
   acc[i0 + 1] += q1 - q0;
   acc[i0 + 2] += q2 - q1;
   acc[i0 + 3] += q3 - q2;
 }
 
-/// accumulate_piece in fixed point: the same shares as split4 gives the AVX2 sweep (accumulate_long_piece's numbers,
-/// or a piece inside one cell by its mean x), so both sweeps add the same integers.
-inline void accumulate_piece_fixed(std::int32_t* acc, double xa, double xb, double h) {
+/// accumulate_piece in fixed point (Cell std::int32_t) or wide cells (std::int64_t): the same shares as split4 gives
+/// the AVX2 sweep (accumulate_long_piece's numbers, or a piece inside one cell by its mean x), so both sweeps add the
+/// same integers.
+template <class Cell>
+inline void accumulate_piece_fixed(Cell* acc, double xa, double xb, double h) {
   const double xl = std::min(xa, xb), xr = std::max(xa, xb);
   const int i0 = static_cast<int>(xl);
   const int k = static_cast<int>(xr) - i0;
@@ -149,8 +193,9 @@ inline void accumulate_piece_fixed(std::int32_t* acc, double xa, double xb, doub
 /// Lane i of a fixed-point split added to the cells at acc: a long piece by accumulate_long_piece_fixed, one within
 /// three cells by its four rounded shares at once (accumulate_piece_fixed's integers either way). Both AVX2 sweeps
 /// (the row sweep's pieces, the dense walk) add a lane this way.
-[[gnu::target("avx2"), gnu::always_inline]] inline void add_split_lane(const SplitLanes<true>& split, int i,
-                                                                       std::int32_t* acc) {
+template <class Cell>
+[[gnu::target("avx2"), gnu::always_inline]] inline void add_split_lane(const SplitLanes<Cell>& split, int i,
+                                                                       Cell* acc) {
   if (split.past[i] > 2) {
     accumulate_long_piece_fixed(acc, std::min(split.xa[i], split.xb[i]), std::max(split.xa[i], split.xb[i]),
                                 split.h[i], split.first[i], split.first[i] + split.past[i]);
@@ -233,6 +278,105 @@ template <FillRule R, bool kAvx2>
   if constexpr (kAvx2) return sweep_fixed_cells_avx2<R>(cells, cov, n, sum);
 #endif
   sweep_fixed_cells_scalar<R>(cells, cov, n, sum);
+}
+
+/// Coverage of a wide cells' running sum under R: fixed_coverage_units' rules in 2^-36 units, the snap at
+/// kWideSnapUnits, then the units shifted to 24 bits (exact in a float).
+template <FillRule R>
+inline float wide_coverage(std::int64_t s) {
+  constexpr std::int64_t one = kWideOne;
+  std::int64_t c;
+  if constexpr (R == FillRule::EvenOdd) {
+    const std::int64_t w = s & (2 * one - 1);  // s modulo two units (two's complement: also for s < 0)
+    c = std::min(w, 2 * one - w);
+  } else if constexpr (R == FillRule::Positive) {
+    c = std::clamp(s, std::int64_t{0}, one);
+  } else if constexpr (R == FillRule::Negative) {
+    c = std::clamp(-s, std::int64_t{0}, one);
+  } else if constexpr (R == FillRule::AbsGeq2) {
+    c = std::clamp((s < 0 ? -s : s) - one, std::int64_t{0}, one);
+  } else {
+    c = std::min(s < 0 ? -s : s, one);
+  }
+  c = c <= kWideSnapUnits ? 0 : c >= one - kWideSnapUnits ? one : c;
+  return static_cast<float>(static_cast<std::int32_t>(c >> kWideFloatShift)) * 0x1p-24f;
+}
+
+/// cells[0, n) -> cov[0, n) under R from the running sum `sum` (left past them); zeroes the cells.
+template <FillRule R>
+inline void sweep_wide_cells_scalar(std::int64_t* cells, float* cov, int n, std::int64_t& sum) {
+  for (int i = 0; i < n; ++i) {
+    sum += cells[i];
+    cells[i] = 0;
+    cov[i] = wide_coverage<R>(sum);
+  }
+}
+
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+// Signed 64-bit minimum and maximum (AVX2 has only the comparison).
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256i min_epi64(__m256i a, __m256i b) {
+  return _mm256_blendv_epi8(a, b, _mm256_cmpgt_epi64(a, b));
+}
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256i max_epi64(__m256i a, __m256i b) {
+  return _mm256_blendv_epi8(a, b, _mm256_cmpgt_epi64(b, a));
+}
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256i abs_epi64(__m256i s) {
+  const __m256i negative = _mm256_cmpgt_epi64(_mm256_setzero_si256(), s);
+  return _mm256_sub_epi64(_mm256_xor_si256(s, negative), negative);
+}
+
+// wide_coverage four lanes at a time, up to the shift: the snapped units (0 .. kWideOne).
+template <FillRule R>
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256i wide_coverage_units_avx2(__m256i s) {
+  const __m256i one = _mm256_set1_epi64x(kWideOne), zero = _mm256_setzero_si256();
+  __m256i c;
+  if constexpr (R == FillRule::EvenOdd) {
+    const __m256i w = _mm256_and_si256(s, _mm256_set1_epi64x(2 * kWideOne - 1));
+    c = min_epi64(w, _mm256_sub_epi64(_mm256_set1_epi64x(2 * kWideOne), w));
+  } else if constexpr (R == FillRule::Positive) {
+    c = min_epi64(max_epi64(s, zero), one);
+  } else if constexpr (R == FillRule::Negative) {
+    c = min_epi64(max_epi64(_mm256_sub_epi64(zero, s), zero), one);
+  } else if constexpr (R == FillRule::AbsGeq2) {
+    c = min_epi64(max_epi64(_mm256_sub_epi64(abs_epi64(s), one), zero), one);
+  } else {
+    c = min_epi64(abs_epi64(s), one);
+  }
+  const __m256i above = _mm256_and_si256(c, _mm256_cmpgt_epi64(c, _mm256_set1_epi64x(kWideSnapUnits)));
+  const __m256i near_one = _mm256_cmpgt_epi64(above, _mm256_set1_epi64x(kWideOne - kWideSnapUnits - 1));
+  return _mm256_blendv_epi8(above, one, near_one);
+}
+
+/// sweep_wide_cells_scalar four cells a step (the same floats: integer sums are exact in any order): reads and zeroes
+/// cells up to three past n (which must be zero: a row's untouched cells) and writes coverage up to three past n.
+template <FillRule R>
+[[gnu::target("avx2")]] inline void sweep_wide_cells_avx2(std::int64_t* cells, float* cov, int n, std::int64_t& sum) {
+  __m256i carry = _mm256_set1_epi64x(sum);
+  const __m256i low_dwords = _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6);
+  for (int i = 0; i < n; i += 4) {
+    auto* const p = reinterpret_cast<__m256i*>(cells + i);
+    __m256i v = _mm256_loadu_si256(p);
+    _mm256_storeu_si256(p, _mm256_setzero_si256());
+    v = _mm256_add_epi64(v, _mm256_slli_si256(v, 8));            // running sums inside each half
+    const __m256i low = _mm256_permute2x128_si256(v, v, 0x08);  // [0 | low half]
+    v = _mm256_add_epi64(v, _mm256_shuffle_epi32(low, 0xEE));   // the low half's total added to the high half
+    const __m256i total = _mm256_permute4x64_epi64(v, 0xFF);
+    const __m256i units = wide_coverage_units_avx2<R>(_mm256_add_epi64(v, carry));
+    carry = _mm256_add_epi64(carry, total);
+    const __m256i levels = _mm256_permutevar8x32_epi32(_mm256_srli_epi64(units, kWideFloatShift), low_dwords);
+    _mm_storeu_ps(cov + i, _mm_mul_ps(_mm_cvtepi32_ps(_mm256_castsi256_si128(levels)), _mm_set1_ps(0x1p-24f)));
+  }
+  sum = _mm256_extract_epi64(carry, 0);
+}
+#endif
+
+/// The wide sweep of a run picked at compile time (kAvx2: the caller was chosen per fill already).
+template <FillRule R, bool kAvx2>
+[[gnu::always_inline]] inline void sweep_wide_cells(std::int64_t* cells, float* cov, int n, std::int64_t& sum) {
+#ifdef VRASTER_HAVE_AVX2_KERNELS
+  if constexpr (kAvx2) return sweep_wide_cells_avx2<R>(cells, cov, n, sum);
+#endif
+  sweep_wide_cells_scalar<R>(cells, cov, n, sum);
 }
 
 }  // namespace vraster::detail

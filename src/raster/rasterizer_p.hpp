@@ -287,6 +287,7 @@ class RasterizerImpl {
     std::vector<Crossing> crossings;      // aliased sweep: active edges with their x at the sample row
     std::vector<double> accumulation;     // analytic sweep: one row of signed area deltas, width + 2 cells
     std::vector<std::int32_t> fixed_cells;  // analytic sweep: the same in fixed point, for rows of few edges
+    std::vector<std::int64_t> wide_cells;   // analytic sweep: the same in 64-bit integers, for rows of many edges
     std::vector<float> coverage;          // analytic sweep: coverage handed to the sink
     std::vector<CoverageRow> batch;       // analytic and queued dense sweeps: rows handed to the sink together
     std::vector<float> batch_coverage;    // analytic sweep: the narrow rows' coverage (queued dense: `coverage`)

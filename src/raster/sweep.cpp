@@ -81,6 +81,7 @@ struct RowBuffers {
   detail::ActiveEdges& columns;
   double* acc;
   std::int32_t* fixed;  // the fixed-point cells of rows of few edges (fixed_cells.hpp); null: doubles for every row
+  std::int64_t* wide;   // the wide cells of rows of more edges (fixed_cells.hpp); null where fixed is
   float* cov;
   detail::RowBatchBuffers batch;  // the narrow rows waiting for the sink, kNarrowRowCoverage floats a row
 };
@@ -202,10 +203,10 @@ inline int piece_last_cell(double xa, double xb) { return static_cast<int>(std::
 template <bool kRanges, class Cell>
 [[gnu::target("avx2")]] inline std::size_t add_pieces_avx2(const detail::ActiveEdges& a, Cell* acc, int& x_lo,
                                                           int& x_hi, std::uint64_t* ranges) {
-  constexpr bool kFixed = std::is_same_v<Cell, std::int32_t>;
+  constexpr bool kFixed = !std::is_same_v<Cell, double>;
   std::size_t count = 0;
   for (std::size_t k = 0; k < a.size; k += 4) {
-    const detail::SplitLanes<kFixed> split(_mm256_loadu_pd(&a.x[k]), _mm256_loadu_pd(&a.xb[k]),
+    const detail::SplitLanes<Cell> split(_mm256_loadu_pd(&a.x[k]), _mm256_loadu_pd(&a.xb[k]),
                                            _mm256_loadu_pd(&a.h[k]));
     const int lanes = static_cast<int>(std::min<std::size_t>(4, a.size - k));  // the last step may pass the list
     for (int i = 0; i < lanes; ++i) {
@@ -383,6 +384,34 @@ template <FillRule R, bool kAvx2>
   });
 }
 
+// A row in wide cells (rows of more than kFixedRowEdges edges), once its pieces are added: narrow and crowded rows
+// swept from x_lo to x_hi as one cluster, sparse ones cluster by cluster, each into its coverage row and one
+// compositor call, with spans between (as the double cells' rows without the sink's pixels).
+template <FillRule R, bool kAvx2>
+[[gnu::always_inline]] inline void resolve_wide_row(int y, int width, int x_lo, int x_hi, bool narrow, bool whole,
+                                                    std::uint64_t* ranges, std::size_t clusters, std::int64_t* wide,
+                                                    float* cov, RowBatch& batch, CoverageSink& sink) {
+  batch.hand_over();
+  std::int64_t sum = 0;
+  auto cluster = [&](int lo, int hi, int gap_end) {
+    // (the cells up to three past hi, which the last block reads, are untouched: zero)
+    detail::sweep_wide_cells<R, kAvx2>(wide + lo, cov, hi - lo + 1, sum);
+    int a = 0, b = std::max(std::min(hi + 1, width) - lo, 0);
+    detail::trim_zeros(cov, a, b);
+    if (b - a == 1) {
+      sink.span(y, lo + a, lo + b, cov[a]);
+    } else if (b > a) {
+      sink.row(y, lo + a, lo + b, cov + a);
+    }
+    if (gap_end > hi + 1) {
+      const float c = detail::wide_coverage<R>(sum);
+      if (c > 0) sink.span(y, hi + 1, gap_end, c);
+    }
+  };
+  if (narrow || whole) return cluster(x_lo, x_hi, width);
+  for_each_cluster(width, ranges, clusters, cluster);
+}
+
 // Rows of up to this many active edges note their pieces' ranges as they add them (add_pieces_avx2).
 constexpr std::size_t kRangedRowEdges = 8;
 
@@ -439,14 +468,17 @@ template <FillRule R, bool kAvx2>
     const double* const hs = a.h.data();
     std::size_t clusters = 0;  // pieces of a sparse wide row, for resolve_clusters
     bool ranged = false;       // whether the pieces' ranges were noted as they were added
-    // Rows of few edges in fixed point, the others in doubles (fixed_cells.hpp): a choice from the row's own edges,
-    // so bands and queued fills make it as a whole sweep does.
+    // Rows of few edges in fixed point, of more in wide cells, of a great many in doubles (fixed_cells.hpp): a
+    // choice from the row's own edges, so bands and queued fills make it as a whole sweep does.
     std::int32_t* const fixed = n <= detail::kFixedRowEdges ? b.fixed : nullptr;
+    std::int64_t* const wide = !fixed && n <= detail::kWideRowEdges ? b.wide : nullptr;
 #ifdef VRASTER_HAVE_AVX2_KERNELS
     if constexpr (kAvx2) {
       // No branch on how many cells a piece touches (mispredicted for short edges and, less often, for long ones;
       // stars 6-8 % faster without it).
-      if (fixed) {
+      if (wide) {
+        add_pieces_avx2<false>(a, wide, x_lo, x_hi, nullptr);  // (rows of many edges: never ranged)
+      } else if (fixed) {
         if (n <= kRangedRowEdges) {
           clusters = add_pieces_avx2<true>(a, fixed, x_lo, x_hi, a.ranges.data());
           ranged = true;
@@ -465,7 +497,9 @@ template <FillRule R, bool kAvx2>
       for (std::size_t k = 0; k < n; ++k) {
         if (hs[k] == 0) continue;
         const double xa = xs[k], xb = xbs[k];
-        if (fixed) {
+        if (wide) {
+          detail::accumulate_piece_fixed(wide, xa, xb, hs[k]);
+        } else if (fixed) {
           detail::accumulate_piece_fixed(fixed, xa, xb, hs[k]);
         } else {
           accumulate_piece(acc, xa, xb, hs[k]);
@@ -510,6 +544,11 @@ template <FillRule R, bool kAvx2>
       a.size = kept;
     }
     if (x_lo > x_hi) continue;
+    if (wide) {
+      resolve_wide_row<R, kAvx2>(y, width, x_lo, x_hi, narrow, whole, a.ranges.data(), clusters, wide, cov, batch,
+                                 sink);
+      continue;
+    }
     if (fixed) {
       resolve_fixed_row<R, kAvx2>(y, width, x_lo, x_hi, narrow, whole, a.ranges.data(), clusters, fixed, cov, batch,
                                   target, sink);
@@ -646,7 +685,7 @@ template <DenseRows kMode, class Cell>
     const __m256d ya4 = _mm256_blend_pd(_mm256_permute4x64_pd(yb, 0x90), _mm256_set1_pd(ya), 0x1);
     const __m256d xa4 = _mm256_blend_pd(_mm256_permute4x64_pd(xb, 0x90), _mm256_set1_pd(xa), 0x1);
     const __m256d h = _mm256_mul_pd(_mm256_sub_pd(yb, ya4), winding);
-    const detail::SplitLanes<kFixed> split(xa4, xb, h);
+    const detail::SplitLanes<Cell> split(xa4, xb, h);
     const __m256i in_rows = _mm256_cvtepi32_epi64(_mm_cmpgt_epi32(_mm_set1_epi32(r1 - y), lanes));
     const int pieces =
         _mm256_movemask_pd(_mm256_and_pd(_mm256_cmp_pd(yb, ya4, _CMP_GT_OQ), _mm256_castsi256_pd(in_rows)));
@@ -1250,11 +1289,15 @@ void detail::RasterizerImpl::sweep_analytic_band(const EdgeTableView& table, Fil
   // The fixed-point sweeps read and write blocks of eight from a run's first cell.
   const std::size_t padded_fixed = cells + detail::kFixedBlock;
   if (fixed_cells && s.fixed_cells.size() < padded_fixed) s.fixed_cells.assign(padded_fixed, 0);
+  // The wide sweep reads and writes blocks of four from a run's first cell.
+  const std::size_t padded_wide = cells + 4;
+  if (fixed_cells && s.wide_cells.size() < padded_wide) s.wide_cells.assign(padded_wide, 0);
   if (s.coverage.size() < padded_fixed) s.coverage.resize(padded_fixed);
   // An edge whose bottom is at or above the band's top was retired before it (e.y1 > bottom keeps an edge).
   start_active(table, y_from, y_from, s.active);
   const RowBuffers buffers{s.active, s.columns, s.accumulation.data(),
-                           fixed_cells ? s.fixed_cells.data() : nullptr, s.coverage.data(),
+                           fixed_cells ? s.fixed_cells.data() : nullptr,
+                           fixed_cells ? s.wide_cells.data() : nullptr, s.coverage.data(),
                            row_batch_buffers(s.batch, s.batch_coverage, kBatchRows, detail::kNarrowRowCoverage)};
   with_rule(rule, [&](auto r) {
     constexpr FillRule R = decltype(r)::value;
