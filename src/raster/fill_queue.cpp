@@ -47,8 +47,8 @@ constexpr double kRecordedPixelsPerUnit = 16;
 // each way. At 16 MiB, cubic_256 (11 MiB of outlines and edges a frame) took 11-18 % longer queued than drawn fill
 // by fill on one thread; 2 MiB was best on the Zen 3 host (twenty-third session). Since queues are drawn in the
 // background (so a small budget no longer means waiting for the threads to wake), 1 MiB, about one core's L2 on the
-// Zen 5 host, keeps cubic_256's two threads at 1.05-1.2x one thread's CPU time where 2 MiB took 1.2-1.35x, and
-// two-thread text_outlines from 0.84-0.92x to 1.1x (docs/performance.md, thirtieth session).
+// Zen 5 host: in alternating runs cubic_256's two threads took 1.05-1.3x one thread's CPU time against 1.2-1.35x
+// at 2 MiB, and two-thread text_outlines was no longer below one thread (docs/performance.md, thirtieth session).
 constexpr std::size_t kQueueBudgetBytes = std::size_t{1} << 20;
 // Building the queue's fills: chunks of consecutive fills per thread, several so that the threads finish together.
 constexpr int kBuildChunksPerThread = 8;
