@@ -93,20 +93,25 @@ inline Cell to_units(double v) {
 
 /// Coverage of the running sum s under R, in units (0 .. kFixedOne): rule_coverage's values, in integers, before the
 /// snap.
+template <FillRule R, class Int>
+inline Int rule_coverage_units(Int s, Int one) {
+  if constexpr (R == FillRule::EvenOdd) {
+    const Int w = s & (2 * one - 1);  // s modulo two units (two's complement: also for s < 0)
+    return std::min(w, 2 * one - w);
+  } else if constexpr (R == FillRule::Positive) {
+    return std::clamp(s, Int{0}, one);
+  } else if constexpr (R == FillRule::Negative) {
+    return std::clamp(-s, Int{0}, one);
+  } else if constexpr (R == FillRule::AbsGeq2) {
+    return std::clamp((s < 0 ? -s : s) - one, Int{0}, one);
+  } else {
+    return std::min(s < 0 ? -s : s, one);
+  }
+}
+
 template <FillRule R>
 inline std::int32_t unsnapped_coverage_units(std::int32_t s) {
-  if constexpr (R == FillRule::EvenOdd) {
-    const std::int32_t w = s & (2 * kFixedOne - 1);  // s modulo two units (two's complement: also for s < 0)
-    return std::min(w, 2 * kFixedOne - w);
-  } else if constexpr (R == FillRule::Positive) {
-    return std::clamp(s, 0, kFixedOne);
-  } else if constexpr (R == FillRule::Negative) {
-    return std::clamp(-s, 0, kFixedOne);
-  } else if constexpr (R == FillRule::AbsGeq2) {
-    return std::clamp(std::abs(s) - kFixedOne, 0, kFixedOne);
-  } else {
-    return std::min(std::abs(s), kFixedOne);
-  }
+  return rule_coverage_units<R>(s, kFixedOne);
 }
 
 /// The same, within kFixedSnapUnits of 0 or of a whole unit snapped to it.
@@ -205,15 +210,37 @@ template <class Cell>
 }
 #endif
 
-/// cells[0, n) -> cov[0, n) under R from the running sum `sum` (left past them); zeroes the cells.
+/// Coverage of a wide cells' running sum under R: fixed_coverage_units' rules in 2^-36 units, the snap at
+/// kWideSnapUnits, then the units shifted to 24 bits (exact in a float).
 template <FillRule R>
-inline void sweep_fixed_cells_scalar(std::int32_t* cells, float* cov, int n, std::int32_t& sum) {
+inline float wide_coverage(std::int64_t s) {
+  constexpr std::int64_t one = kWideOne;
+  std::int64_t c = rule_coverage_units<R>(s, one);
+  c = c <= kWideSnapUnits ? 0 : c >= one - kWideSnapUnits ? one : c;
+  return static_cast<float>(static_cast<std::int32_t>(c >> kWideFloatShift)) * 0x1p-24f;
+}
+
+/// A fixed-point or wide cell's running sum as coverage under R.
+template <FillRule R, class Cell>
+inline float integer_cell_coverage(Cell s) {
+  if constexpr (std::is_same_v<Cell, std::int64_t>) {
+    return wide_coverage<R>(s);
+  } else {
+    return fixed_coverage<R>(s);
+  }
+}
+
+/// cells[0, n) -> cov[0, n) under R from the running sum `sum` (left past them); zeroes the cells (fixed-point or
+/// wide cells).
+template <FillRule R, class Cell>
+inline void sweep_fixed_cells_scalar(Cell* cells, float* cov, int n, Cell& sum) {
   for (int i = 0; i < n; ++i) {
     sum += cells[i];
     cells[i] = 0;
-    cov[i] = fixed_coverage<R>(sum);
+    cov[i] = integer_cell_coverage<R>(sum);
   }
 }
+
 
 #ifdef VRASTER_HAVE_AVX2_KERNELS
 template <FillRule R>
@@ -271,47 +298,6 @@ template <FillRule R>
 }
 #endif
 
-/// The sweep of a run picked at compile time (kAvx2: the caller was chosen per fill already).
-template <FillRule R, bool kAvx2>
-[[gnu::always_inline]] inline void sweep_fixed_cells(std::int32_t* cells, float* cov, int n, std::int32_t& sum) {
-#ifdef VRASTER_HAVE_AVX2_KERNELS
-  if constexpr (kAvx2) return sweep_fixed_cells_avx2<R>(cells, cov, n, sum);
-#endif
-  sweep_fixed_cells_scalar<R>(cells, cov, n, sum);
-}
-
-/// Coverage of a wide cells' running sum under R: fixed_coverage_units' rules in 2^-36 units, the snap at
-/// kWideSnapUnits, then the units shifted to 24 bits (exact in a float).
-template <FillRule R>
-inline float wide_coverage(std::int64_t s) {
-  constexpr std::int64_t one = kWideOne;
-  std::int64_t c;
-  if constexpr (R == FillRule::EvenOdd) {
-    const std::int64_t w = s & (2 * one - 1);  // s modulo two units (two's complement: also for s < 0)
-    c = std::min(w, 2 * one - w);
-  } else if constexpr (R == FillRule::Positive) {
-    c = std::clamp(s, std::int64_t{0}, one);
-  } else if constexpr (R == FillRule::Negative) {
-    c = std::clamp(-s, std::int64_t{0}, one);
-  } else if constexpr (R == FillRule::AbsGeq2) {
-    c = std::clamp((s < 0 ? -s : s) - one, std::int64_t{0}, one);
-  } else {
-    c = std::min(s < 0 ? -s : s, one);
-  }
-  c = c <= kWideSnapUnits ? 0 : c >= one - kWideSnapUnits ? one : c;
-  return static_cast<float>(static_cast<std::int32_t>(c >> kWideFloatShift)) * 0x1p-24f;
-}
-
-/// cells[0, n) -> cov[0, n) under R from the running sum `sum` (left past them); zeroes the cells.
-template <FillRule R>
-inline void sweep_wide_cells_scalar(std::int64_t* cells, float* cov, int n, std::int64_t& sum) {
-  for (int i = 0; i < n; ++i) {
-    sum += cells[i];
-    cells[i] = 0;
-    cov[i] = wide_coverage<R>(sum);
-  }
-}
-
 #ifdef VRASTER_HAVE_AVX2_KERNELS
 // Signed 64-bit minimum and maximum (AVX2 has only the comparison).
 [[gnu::target("avx2"), gnu::always_inline]] inline __m256i min_epi64(__m256i a, __m256i b) {
@@ -347,8 +333,8 @@ template <FillRule R>
   return _mm256_blendv_epi8(above, one, near_one);
 }
 
-/// sweep_wide_cells_scalar four cells a step (the same floats: integer sums are exact in any order): reads and zeroes
-/// cells up to three past n (which must be zero: a row's untouched cells) and writes coverage up to three past n.
+/// sweep_fixed_cells_scalar on wide cells, four a step (the same floats: integer sums are exact in any order):
+/// reads and zeroes cells up to three past n (which must be zero: a row's untouched cells) and writes coverage up to three past n.
 template <FillRule R>
 [[gnu::target("avx2")]] inline void sweep_wide_cells_avx2(std::int64_t* cells, float* cov, int n, std::int64_t& sum) {
   __m256i carry = _mm256_set1_epi64x(sum);
@@ -370,13 +356,15 @@ template <FillRule R>
 }
 #endif
 
-/// The wide sweep of a run picked at compile time (kAvx2: the caller was chosen per fill already).
-template <FillRule R, bool kAvx2>
-[[gnu::always_inline]] inline void sweep_wide_cells(std::int64_t* cells, float* cov, int n, std::int64_t& sum) {
+/// The sweep of a run of fixed-point or wide cells picked at compile time (kAvx2: the caller was chosen per fill
+/// already).
+template <FillRule R, bool kAvx2, class Cell>
+[[gnu::always_inline]] inline void sweep_fixed_cells(Cell* cells, float* cov, int n, Cell& sum) {
 #ifdef VRASTER_HAVE_AVX2_KERNELS
-  if constexpr (kAvx2) return sweep_wide_cells_avx2<R>(cells, cov, n, sum);
+  if constexpr (kAvx2 && std::is_same_v<Cell, std::int64_t>) return sweep_wide_cells_avx2<R>(cells, cov, n, sum);
+  if constexpr (kAvx2 && std::is_same_v<Cell, std::int32_t>) return sweep_fixed_cells_avx2<R>(cells, cov, n, sum);
 #endif
-  sweep_wide_cells_scalar<R>(cells, cov, n, sum);
+  sweep_fixed_cells_scalar<R>(cells, cov, n, sum);
 }
 
 }  // namespace vraster::detail

@@ -395,7 +395,7 @@ template <FillRule R, bool kAvx2>
   std::int64_t sum = 0;
   auto cluster = [&](int lo, int hi, int gap_end) {
     // (the cells up to three past hi, which the last block reads, are untouched: zero)
-    detail::sweep_wide_cells<R, kAvx2>(wide + lo, cov, hi - lo + 1, sum);
+    detail::sweep_fixed_cells<R, kAvx2>(wide + lo, cov, hi - lo + 1, sum);
     int a = 0, b = std::max(std::min(hi + 1, width) - lo, 0);
     detail::trim_zeros(cov, a, b);
     if (b - a == 1) {
