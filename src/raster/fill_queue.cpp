@@ -251,7 +251,7 @@ void RasterizerImpl::build_queued(QueuedFill& q, BandScratch& s) const {
     const DenseKind dense = dense_kind(q.edges, q.y_min, q.y_max, q.columns, dense_limit_);
     if (dense != DenseKind::None) {
       q.kind = dense == DenseKind::Ranged ? QueuedFill::Kind::Ranged : QueuedFill::Kind::Dense;
-      q.fixed_cells = dense_fixed_cells(fixed_cells_, dense, q.columns, q.edges, s.dense_notes);
+      q.dense_cells = dense_cell_type(fixed_cells_, dense, q.columns, q.edges, s.dense_notes);
     } else {
       detail::bucket_edges(q.edges, q.y_min, q.y_max, false, q.order, q.bucket_start, s.bucket);
       q.kind = QueuedFill::Kind::Analytic;

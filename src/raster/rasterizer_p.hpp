@@ -128,19 +128,22 @@ DenseKind dense_kind(const std::vector<Edge>& edges, int y_min, int y_max, int c
 struct DenseScratch {
   std::vector<double>& block;       // rows x columns of cells
   std::vector<std::int32_t>& fixed_block;  // the same in fixed point (fixed_cells.hpp), for fills of few edges
+  std::vector<std::int64_t>& wide_block;   // the same in wide cells (fixed_cells.hpp), for fills of more
   std::vector<int>& notes;          // per row: first and last cell written (and pieces' ranges: DenseRows)
   std::vector<CoverageRow>& batch;  // rows handed to the sink together
   std::vector<float>& coverage;     // their coverage, a slot per row
 };
 /// The dense sweep of rows [y_from, y_to) of `edges` (cells [x_base, x_base + columns)).
-/// Whether a dense fill's rows take fixed-point cells (fixed_cells.hpp), as the row sweep's rows of few edges: its
-/// wide blocks with at most kFixedRowEdges pieces in every row, where `fixed_cells` allows them. Once per fill
-/// (`scratch`: any vector), so that its bands and strips all decide alike.
-bool dense_fixed_cells(bool fixed_cells, DenseKind kind, int columns, const std::vector<Edge>& edges,
-                       std::vector<int>& scratch);
-/// fixed_cells: dense_fixed_cells' answer for the fill.
+/// The cells a dense fill's rows take (fixed_cells.hpp), as the row sweep's rows do: where `fixed_cells` allows
+/// integer cells, its wide blocks (Trimmed, Ranged) with at most kFixedRowEdges pieces in every row take fixed-point
+/// cells, those of fills of up to kWideRowEdges edges wide cells; narrow blocks and the rest double cells. Once per
+/// fill (`scratch`: any vector), so that its bands and strips all decide alike.
+enum class DenseCells : std::uint8_t { Double, Fixed, Wide };
+DenseCells dense_cell_type(bool fixed_cells, DenseKind kind, int columns, const std::vector<Edge>& edges,
+                           std::vector<int>& scratch);
+/// cell_type: dense_cell_type's answer for the fill.
 void sweep_dense_range(FillRule rule, DenseKind kind, const std::vector<Edge>& edges, int y_from, int y_to,
-                       int x_base, int columns, int width, bool fixed_cells, DenseScratch s, CoverageSink& sink);
+                       int x_base, int columns, int width, DenseCells cell_type, DenseScratch s, CoverageSink& sink);
 
 /// Crossings of `edges` (clipped to rows [0, height)) inside pixel rows: per row, the pairs of edges whose x order
 /// at the row's top (ties by x at the bottom) differs from their order at its bottom. Counting stops once it
@@ -193,8 +196,9 @@ struct QueuedFill {
   Polylines lines;  // Unbuilt: the fill's outline, as fill_queued got it
   bool prebuilt = false;  // Unbuilt: edges, y_min and y_max are built already (the fill that started the queue)
   int x_base = 0, columns = 0;  // Dense, Ranged: the cells the edges reach (edge_columns)
-  bool fixed_cells = false;     // Dense, Ranged: rows in fixed-point cells (dense_fixed_cells); Analytic: rows of
-                                // few edges in fixed-point cells (the rasterizer's setting when it was built)
+  bool fixed_cells = false;     // Analytic: rows of few (and of many) edges in integer cells (the rasterizer's
+                                // setting when it was built)
+  DenseCells dense_cells = DenseCells::Double;  // Dense, Ranged: the cells of its rows (dense_cell_type)
   FillRule rule = FillRule::NonZero;
   AntiAlias aa = AntiAlias::Analytic;
   int width = 0, height = 0;
@@ -293,6 +297,7 @@ class RasterizerImpl {
     std::vector<float> batch_coverage;    // analytic sweep: the narrow rows' coverage (queued dense: `coverage`)
     std::vector<double> dense_block;      // queued dense fills: rows x columns of cells, zero between fills
     std::vector<std::int32_t> dense_fixed_block;  // the same in fixed point, for fills of few edges
+    std::vector<std::int64_t> dense_wide_block;   // the same in wide cells, for fills of more
     std::vector<int> dense_notes;         // queued dense fills: what each row's pieces wrote (DenseRows)
     BucketScratch bucket;                 // building queued fills
   };
@@ -317,9 +322,9 @@ class RasterizerImpl {
   /// fixed_cells: the row sweep's rows of few edges in fixed point (analytic mode, unless turned off).
   void sweep_analytic(FillRule rule, int width, bool fixed_cells, CoverageSink& sink);
   void sweep_sampled(FillRule rule, AntiAlias aa, int width, CoverageSink& sink);
-  /// fixed_cells: whether fixed-point cells are allowed (dense_fixed_cells decides for the fill).
+  /// fixed_cells: whether integer cells are allowed (dense_cell_type decides for the fill).
   bool sweep_dense(FillRule rule, int width, int x_base, int columns, bool fixed_cells, CoverageSink& sink);
-  [[gnu::noinline]] void sweep_ranged(FillRule rule, int width, int x_base, int columns, bool fixed_cells,
+  [[gnu::noinline]] void sweep_ranged(FillRule rule, int width, int x_base, int columns, DenseCells cell_type,
                                       CoverageSink& sink);
   /// The dense sweep of rows [y_from, y_to) of a queued fill, on one thread.
   static void sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s);
@@ -342,6 +347,7 @@ class RasterizerImpl {
   std::vector<CoverageRow> dense_batch_;     // dense sweep: the rows of a batch
   std::vector<double> dense_block_;          // small paths: rows x columns of cells, zero between fills
   std::vector<std::int32_t> dense_fixed_block_;  // the same in fixed point, for fills of few edges
+  std::vector<std::int64_t> dense_wide_block_;   // the same in wide cells, for fills of more
   std::vector<int> dense_notes_;             // dense fills: what each row's pieces wrote (DenseRows)
   std::vector<float> rect_coverage_;         // fill_rect: the coverage of up to three rows
   std::vector<double> rect_cells_;           // fill_rect: analytic cells of one row, zero between fills

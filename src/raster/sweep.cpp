@@ -317,18 +317,18 @@ template <FillRule R, bool kAvx2>
   });
 }
 
-// resolve_cluster for fixed-point cells (fixed_cells.hpp): cells lo .. hi (relative to x_base; cells is cell
-// x_base) swept from `sum` (blocks of eight, which read up to seven cells past hi: untouched, zero), blended straight
-// into the target's pixels where there is one, else one compositor call for the nonzero pixels; then the stretch up
-// to gap_end as one span.
-template <FillRule R, bool kAvx2>
+// resolve_cluster for fixed-point or wide cells (fixed_cells.hpp): cells lo .. hi (relative to x_base; cells is cell
+// x_base) swept from `sum` (blocks of eight or four, which read up to seven or three cells past hi: untouched,
+// zero), blended straight into the target's pixels where there is one (fixed-point cells only), else one compositor
+// call for the nonzero pixels; then the stretch up to gap_end as one span.
+template <FillRule R, bool kAvx2, class Cell>
 [[gnu::always_inline]] inline void resolve_fixed_cluster(int y, int width, int x_base, int lo, int hi, int gap_end,
-                                                         std::int32_t* cells, float* cov, std::int32_t& sum,
-                                                         const SolidOver8* target, CoverageSink& sink) {
+                                                         Cell* cells, float* cov, Cell& sum, const SolidOver8* target,
+                                                         CoverageSink& sink) {
   const int visible = std::max(std::min(hi + 1, width - x_base) - lo, 0);
   bool blended = false;
 #ifdef VRASTER_HAVE_AVX2_KERNELS
-  if constexpr (kAvx2) {
+  if constexpr (kAvx2 && std::is_same_v<Cell, std::int32_t>) {
     if (target) {
       auto* const px = reinterpret_cast<std::uint32_t*>(target->pixels + y * target->stride) + x_base + lo;
       detail::blend_fixed_cells_avx2<R>(cells + lo, hi - lo + 1, visible, sum, px, target->color);
@@ -347,7 +347,7 @@ template <FillRule R, bool kAvx2>
     }
   }
   if (gap_end > hi + 1) {
-    const float c = detail::fixed_coverage<R>(sum);
+    const float c = detail::integer_cell_coverage<R>(sum);
     if (c > 0) sink.span(y, x_base + hi + 1, x_base + gap_end, c);
   }
 }
@@ -393,23 +393,12 @@ template <FillRule R, bool kAvx2>
                                                     float* cov, RowBatch& batch, CoverageSink& sink) {
   batch.hand_over();
   std::int64_t sum = 0;
-  auto cluster = [&](int lo, int hi, int gap_end) {
-    // (the cells up to three past hi, which the last block reads, are untouched: zero)
-    detail::sweep_fixed_cells<R, kAvx2>(wide + lo, cov, hi - lo + 1, sum);
-    int a = 0, b = std::max(std::min(hi + 1, width) - lo, 0);
-    detail::trim_zeros(cov, a, b);
-    if (b - a == 1) {
-      sink.span(y, lo + a, lo + b, cov[a]);
-    } else if (b > a) {
-      sink.row(y, lo + a, lo + b, cov + a);
-    }
-    if (gap_end > hi + 1) {
-      const float c = detail::wide_coverage<R>(sum);
-      if (c > 0) sink.span(y, hi + 1, gap_end, c);
-    }
-  };
-  if (narrow || whole) return cluster(x_lo, x_hi, width);
-  for_each_cluster(width, ranges, clusters, cluster);
+  if (narrow || whole) {
+    return resolve_fixed_cluster<R, kAvx2>(y, width, 0, x_lo, x_hi, width, wide, cov, sum, nullptr, sink);
+  }
+  for_each_cluster(width, ranges, clusters, [&](int lo, int hi, int gap_end) {
+    resolve_fixed_cluster<R, kAvx2>(y, width, 0, lo, hi, gap_end, wide, cov, sum, nullptr, sink);
+  });
 }
 
 // Rows of up to this many active edges note their pieces' ranges as they add them (add_pieces_avx2).
@@ -667,7 +656,7 @@ constexpr int kWalkMinRows = 3;
 template <DenseRows kMode, class Cell>
 [[gnu::target("avx2")]] inline void walk_edge_avx2(const Edge& e, int r0, int r1, int y_min, double shift,
                                                    Cell* block, int stride, int* notes) {
-  constexpr bool kFixed = std::is_same_v<Cell, std::int32_t>;
+  constexpr bool kFixed = !std::is_same_v<Cell, double>;
   double ya = std::max(e.y0, static_cast<double>(r0));
   double xa = (ya == e.y0 ? e.x0 : e.x_at(ya)) - shift;
   const __m256d y0 = _mm256_set1_pd(e.y0), y1 = _mm256_set1_pd(e.y1), x0 = _mm256_set1_pd(e.x0);
@@ -827,24 +816,25 @@ template <FillRule R, DenseRows kMode, bool kAvx2>
   batch.hand_over();
 }
 
-// The rows of a dense block in fixed-point cells (Trimmed or Ranged), once its edges have walked: as the double
-// cells' rows below, with the integer sweeps (resolve_fixed_cluster), from blocks of eight.
-template <FillRule R, DenseRows kMode, bool kAvx2>
+// The rows of a dense block in fixed-point or wide cells (Trimmed or Ranged), once its edges have walked: as the
+// double cells' rows below, with the integer sweeps (resolve_fixed_cluster), from blocks of eight (four).
+template <FillRule R, DenseRows kMode, bool kAvx2, class Cell>
 [[gnu::always_inline]] inline void resolve_dense_rows_fixed(int y_min, int y_max, int x_base, int columns, int width,
-                                                            std::int32_t* block, const int* notes, RowBatch& batch,
+                                                            Cell* block, const int* notes, RowBatch& batch,
                                                             const SolidOver8* target, CoverageSink& sink) {
+  constexpr int kBlock = dense_block_cells<Cell>();
   static_assert(kMode != DenseRows::Whole, "narrow blocks keep double cells");
   constexpr int kNotes = row_notes(kMode);
-  const int stride = dense_stride<std::int32_t>(columns);
+  const int stride = dense_stride<Cell>(columns);
   const int row_end = width - x_base;  // the image's right edge, in cells from x_base
   for (int y = y_min; y < y_max; ++y) {
-    std::int32_t* const row = block + static_cast<std::size_t>(y - y_min) * stride;
+    Cell* const row = block + static_cast<std::size_t>(y - y_min) * stride;
     const int* const row_extent = notes + kNotes * (y - y_min);
     if (row_extent[1] < 0) continue;  // no piece in this row: coverage 0 all along
-    std::int32_t sum = 0;
+    Cell sum = 0;
     if constexpr (kMode == DenseRows::Ranged) {
       int lo[kRowRanges], hi[kRowRanges];
-      if (const int clusters = ranged_clusters<detail::kFixedBlock>(row_extent, lo, hi)) {
+      if (const int clusters = ranged_clusters<kBlock>(row_extent, lo, hi)) {
         batch.hand_over();  // the rows before go first
         for (int k = 0; k < clusters; ++k) {
           const int gap_end = std::min(k + 1 < clusters ? lo[k + 1] : row_end, row_end);
@@ -854,7 +844,7 @@ template <FillRule R, DenseRows kMode, bool kAvx2>
         continue;
       }
     }
-    const int from = row_extent[0] & ~(detail::kFixedBlock - 1), last = std::min(row_extent[1], columns - 1);
+    const int from = row_extent[0] & ~(kBlock - 1), last = std::min(row_extent[1], columns - 1);
     if (target) {
       resolve_fixed_cluster<R, kAvx2>(y, width, x_base, from, last, row_end, row, batch.slot(), sum, target, sink);
       continue;
@@ -865,7 +855,7 @@ template <FillRule R, DenseRows kMode, bool kAvx2>
     int a = from, b = std::max(std::min(last + 1, row_end), from);
     detail::trim_zeros(cov, a, b);
     if (b > a) batch.add(y, x_base + a, x_base + b, cov + a);
-    const float c = detail::fixed_coverage<R>(sum);
+    const float c = detail::integer_cell_coverage<R>(sum);
     if (c > 0 && last + 1 < row_end) {
       batch.hand_over();
       sink.span(y, x_base + last + 1, width, c);
@@ -876,12 +866,13 @@ template <FillRule R, DenseRows kMode, bool kAvx2>
 
 // kAvx2: compiled into an AVX2 function (sweep_dense_rows_avx2), whose narrow blocks' rows take sweep_narrow_row's
 // AVX2 blocks and its mask of nonzero coverage (no trimming loops). Cell: double, or std::int32_t for fixed-point
-// cells (Trimmed and Ranged blocks of fills of few edges, fixed_cells.hpp).
+// cells (Trimmed and Ranged blocks of fills of few edges, fixed_cells.hpp), or std::int64_t for wide cells (those of
+// fills of more).
 template <FillRule R, DenseRows kMode, bool kAvx2, class Cell>
 [[gnu::always_inline]] inline void sweep_dense_block(const std::vector<Edge>& edges, int y_min, int y_max, int x_base,
                                                      int columns, int width, Cell* block, int* notes,
                                                      const detail::RowBatchBuffers& out, CoverageSink& sink) {
-  constexpr bool kFixed = std::is_same_v<Cell, std::int32_t>;
+  constexpr bool kFixed = !std::is_same_v<Cell, double>;
   const int stride = dense_stride<Cell>(columns);
   RowBatch batch(sink, out, static_cast<std::size_t>(stride));
   const double shift = x_base;
@@ -966,29 +957,28 @@ void sweep_dense_rows(const std::vector<Edge>& edges, int y_min, int y_max, int 
   sweep_dense_rows_portable<R, kMode>(edges, y_min, y_max, x_base, columns, width, block, notes, out, sink);
 }
 
-// A block of the given mode; in fixed-point cells where `fixed` is given (Trimmed and Ranged blocks only).
+// A block of the given mode; in fixed-point or wide cells where `fixed` or `wide` is given (Trimmed and Ranged
+// blocks only).
 template <FillRule R>
 void sweep_dense_rows(DenseRows mode, const std::vector<Edge>& edges, int y_min, int y_max, int x_base, int columns,
-                      int width, double* block, std::int32_t* fixed, int* notes, const detail::RowBatchBuffers& out,
-                      CoverageSink& sink) {
+                      int width, double* block, std::int32_t* fixed, std::int64_t* wide, int* notes,
+                      const detail::RowBatchBuffers& out, CoverageSink& sink) {
+  auto in_cells = [&](auto mode_constant, auto* cells) {
+    sweep_dense_rows<R, decltype(mode_constant)::value>(edges, y_min, y_max, x_base, columns, width, cells, notes, out,
+                                                        sink);
+  };
+  auto with_cells = [&](auto mode_constant) {
+    if (fixed) return in_cells(mode_constant, fixed);
+    if (wide) return in_cells(mode_constant, wide);
+    in_cells(mode_constant, block);
+  };
   switch (mode) {
     case DenseRows::Ranged:
-      if (fixed) {
-        return sweep_dense_rows<R, DenseRows::Ranged>(edges, y_min, y_max, x_base, columns, width, fixed, notes, out,
-                                                      sink);
-      }
-      return sweep_dense_rows<R, DenseRows::Ranged>(edges, y_min, y_max, x_base, columns, width, block, notes, out,
-                                                    sink);
+      return with_cells(std::integral_constant<DenseRows, DenseRows::Ranged>{});
     case DenseRows::Trimmed:
-      if (fixed) {
-        return sweep_dense_rows<R, DenseRows::Trimmed>(edges, y_min, y_max, x_base, columns, width, fixed, notes,
-                                                       out, sink);
-      }
-      return sweep_dense_rows<R, DenseRows::Trimmed>(edges, y_min, y_max, x_base, columns, width, block, notes, out,
-                                                     sink);
+      return with_cells(std::integral_constant<DenseRows, DenseRows::Trimmed>{});
     case DenseRows::Whole:
-      return sweep_dense_rows<R, DenseRows::Whole>(edges, y_min, y_max, x_base, columns, width, block, notes, out,
-                                                   sink);
+      return in_cells(std::integral_constant<DenseRows, DenseRows::Whole>{}, block);
   }
 }
 
@@ -1090,9 +1080,12 @@ bool few_pieces_in_every_row(const std::vector<Edge>& edges, std::vector<int>& c
 
 // Once per fill, before its bands and strips (so that all of them decide alike): wide blocks (Trimmed, Ranged) whose
 // rows hold at most kFixedRowEdges pieces each take fixed-point cells, where the rasterizer allows them.
-bool detail::dense_fixed_cells(bool fixed_cells, DenseKind kind, int columns, const std::vector<Edge>& edges,
-                               std::vector<int>& scratch) {
-  return fixed_cells && dense_rows_mode(kind, columns) != DenseRows::Whole && few_pieces_in_every_row(edges, scratch);
+detail::DenseCells detail::dense_cell_type(bool fixed_cells, DenseKind kind, int columns,
+                                           const std::vector<Edge>& edges, std::vector<int>& scratch) {
+  if (!fixed_cells || dense_rows_mode(kind, columns) == DenseRows::Whole) return DenseCells::Double;
+  if (few_pieces_in_every_row(edges, scratch)) return DenseCells::Fixed;
+  // (a row's pieces are at most the fill's edges)
+  return edges.size() <= kWideRowEdges ? DenseCells::Wide : DenseCells::Double;
 }
 
 // The one choice of the dense sweep, for fills drawn at once and queued ones alike (both must take the same path).
@@ -1122,15 +1115,17 @@ detail::RowBatchBuffers detail::row_batch_buffers(std::vector<CoverageRow>& batc
 // Rows [y_from, y_to) of a dense fill, in strips of at most Rasterizer::kDefaultDenseLimit cells (a thin shape's
 // box may be the image's, and the block must stay in the cache). Each row takes the pieces of the edges inside it (in
 // edge order) and a running sum of its own, so strips, like bands, give the bits one block would.
-// Fixed-point cells where dense_fixed_cells said so for the fill (its wide blocks with at most kFixedRowEdges pieces
-// in every row: the row sweep's bound holds for them). Narrow blocks (glyphs, micro shapes) keep double cells: their
-// sums are short, and their areas stay exact to the double's round-off.
+// Fixed-point or wide cells where dense_cell_type said so for the fill (its wide blocks: with at most kFixedRowEdges
+// pieces in every row fixed-point cells, else wide ones; the row sweep's bound holds for both). Narrow blocks (glyphs,
+// micro shapes) keep double cells: their sums are short, and their areas stay exact to the double's round-off.
 void detail::sweep_dense_range(FillRule rule, DenseKind kind, const std::vector<Edge>& edges, int y_from, int y_to,
-                               int x_base, int columns, int width, bool fixed_cells, DenseScratch s,
+                               int x_base, int columns, int width, DenseCells cell_type, DenseScratch s,
                                CoverageSink& sink) {
   const DenseRows mode = dense_rows_mode(kind, columns);
-  const bool fixed = fixed_cells && mode != DenseRows::Whole;
-  const int stride = fixed ? dense_stride<std::int32_t>(columns) : dense_stride(columns);
+  const bool fixed = cell_type == DenseCells::Fixed && mode != DenseRows::Whole;
+  const bool wide = cell_type == DenseCells::Wide && mode != DenseRows::Whole;
+  const int stride = fixed ? dense_stride<std::int32_t>(columns)
+                           : wide ? dense_stride<std::int64_t>(columns) : dense_stride(columns);
   const int strip_rows =
       static_cast<int>(std::clamp<std::int64_t>(Rasterizer::kDefaultDenseLimit / stride, 1, y_to - y_from));
   // (plus kPieceSlack: a piece split without branches adds + 0 to up to 3 cells past the cell after its last, past
@@ -1138,7 +1133,8 @@ void detail::sweep_dense_range(FillRule rule, DenseKind kind, const std::vector<
   const std::size_t cells =
       static_cast<std::size_t>(stride) * static_cast<std::size_t>(strip_rows) + detail::kPieceSlack;
   if (fixed && s.fixed_block.size() < cells) s.fixed_block.assign(cells, 0);  // zero; every sweep leaves it zero
-  if (!fixed && s.block.size() < cells) s.block.assign(cells, 0.0);
+  if (wide && s.wide_block.size() < cells) s.wide_block.assign(cells, 0);
+  if (!fixed && !wide && s.block.size() < cells) s.block.assign(cells, 0.0);
   const auto notes = static_cast<std::size_t>(row_notes(DenseRows::Ranged)) * static_cast<std::size_t>(strip_rows);
   if (s.notes.size() < notes) s.notes.resize(notes);
   const RowBatchBuffers out = row_batch_buffers(s.batch, s.coverage, strip_rows, stride);
@@ -1147,8 +1143,8 @@ void detail::sweep_dense_range(FillRule rule, DenseKind kind, const std::vector<
   with_rule(rule, [&](auto r) {
     for (int y = y_from; y < y_to; y += strip_rows) {
       sweep_dense_rows<decltype(r)::value>(mode, edges, y, std::min(y + strip_rows, y_to), x_base, columns, width,
-                                           s.block.data(), fixed ? s.fixed_block.data() : nullptr, s.notes.data(),
-                                           out, sink);
+                                           s.block.data(), fixed ? s.fixed_block.data() : nullptr,
+                                           wide ? s.wide_block.data() : nullptr, s.notes.data(), out, sink);
     }
   });
 }
@@ -1157,12 +1153,13 @@ bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, i
                                          CoverageSink& sink) {
   const DenseKind kind = dense_kind(edges_, y_min_, y_max_, columns, dense_limit_);
   if (kind == DenseKind::None) return false;
-  const bool fixed = dense_fixed_cells(fixed_cells, kind, columns, edges_, dense_notes_);
+  const DenseCells cell_type = dense_cell_type(fixed_cells, kind, columns, edges_, dense_notes_);
   if (kind == DenseKind::Ranged) {
-    sweep_ranged(rule, width, x_base, columns, fixed, sink);
+    sweep_ranged(rule, width, x_base, columns, cell_type, sink);
   } else {
-    sweep_dense_range(rule, kind, edges_, y_min_, y_max_, x_base, columns, width, fixed,
-                      {dense_block_, dense_fixed_block_, dense_notes_, dense_batch_, row_coverage_}, sink);
+    sweep_dense_range(rule, kind, edges_, y_min_, y_max_, x_base, columns, width, cell_type,
+                      {dense_block_, dense_fixed_block_, dense_wide_block_, dense_notes_, dense_batch_, row_coverage_},
+                      sink);
   }
   return true;
 }
@@ -1170,19 +1167,21 @@ bool detail::RasterizerImpl::sweep_dense(FillRule rule, int width, int x_base, i
 // A large fill with its rows' pieces noted: in bands with threads, as the row sweep (rows are swept one by one from
 // the cells of their own pieces, so bands give the bits of one sweep). Out of line: small fills come by sweep_dense
 // by the thousand.
-void detail::RasterizerImpl::sweep_ranged(FillRule rule, int width, int x_base, int columns, bool fixed_cells,
+void detail::RasterizerImpl::sweep_ranged(FillRule rule, int width, int x_base, int columns, DenseCells cell_type,
                                           CoverageSink& sink) {
   in_bands(band_count(sink), [&](int y0, int y1, BandScratch& s) {
-    sweep_dense_range(rule, DenseKind::Ranged, edges_, y0, y1, x_base, columns, width, fixed_cells,
-                      {s.dense_block, s.dense_fixed_block, s.dense_notes, s.batch, s.coverage}, sink);
+    sweep_dense_range(rule, DenseKind::Ranged, edges_, y0, y1, x_base, columns, width, cell_type,
+                      {s.dense_block, s.dense_fixed_block, s.dense_wide_block, s.dense_notes, s.batch, s.coverage},
+                      sink);
   });
 }
 
 // Rows [y_from, y_to) of a queued dense fill.
 void detail::RasterizerImpl::sweep_dense_band(const QueuedFill& fill, int y_from, int y_to, BandScratch& s) {
   const DenseKind kind = fill.kind == QueuedFill::Kind::Ranged ? DenseKind::Ranged : DenseKind::Dense;
-  sweep_dense_range(fill.rule, kind, fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width, fill.fixed_cells,
-                    {s.dense_block, s.dense_fixed_block, s.dense_notes, s.batch, s.coverage}, *fill.sink);
+  sweep_dense_range(fill.rule, kind, fill.edges, y_from, y_to, fill.x_base, fill.columns, fill.width, fill.dense_cells,
+                    {s.dense_block, s.dense_fixed_block, s.dense_wide_block, s.dense_notes, s.batch, s.coverage},
+                    *fill.sink);
 }
 
 // The columns the edges reach: cells [x_base, x_base + columns) hold every cell an edge can write (the last edge's
