@@ -22,7 +22,10 @@ class CallLog final : public CoverageSink {
   }
   void row(int y, int x0, int x1, const float* coverage) override {
     std::string c = "row " + std::to_string(y) + " " + std::to_string(x0) + " " + std::to_string(x1);
-    for (int x = x0; x < x1; ++x) c += " " + std::to_string(coverage[x - x0]);
+    for (int x = x0; x < x1; ++x) {
+      c += ' ';  // (appended apart: " " + std::to_string(...) draws a false -Wrestrict warning from GCC 12)
+      c += std::to_string(coverage[x - x0]);
+    }
     calls.push_back(c);
   }
   std::vector<std::string> calls;
