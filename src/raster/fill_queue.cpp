@@ -48,7 +48,8 @@ constexpr double kRecordedPixelsPerUnit = 16;
 // by fill on one thread; 2 MiB was best on the Zen 3 host (twenty-third session). Since queues are drawn in the
 // background (so a small budget no longer means waiting for the threads to wake), 1 MiB, about one core's L2 on the
 // Zen 5 host: in alternating runs cubic_256's two threads took 1.05-1.3x one thread's CPU time against 1.2-1.35x
-// at 2 MiB, the other scenes level within the host's noise (docs/performance.md, thirtieth session).
+// at 2 MiB, and two-thread text_outlines 1.02-1.21x one thread against 0.71-0.86x (docs/performance.md, thirtieth
+// session).
 constexpr std::size_t kQueueBudgetBytes = std::size_t{1} << 20;
 // Building the queue's fills: chunks of consecutive fills per thread, several so that the threads finish together.
 constexpr int kBuildChunksPerThread = 8;
