@@ -235,6 +235,11 @@ inline const SolidOver8* solid_target(const CoverageSink& sink, SolidOver8& pixe
   return pixels.x0 == 0 && pixels.y0 == 0 && pixels.width >= width && pixels.height >= y_end ? &pixels : nullptr;
 }
 
+// The pixels of the target's row from column x on that a run's partial blend step may read and write back unchanged
+// (blend_whole_step8): all of them for an opaque colour, none for a translucent one. The row is this thread's: bands
+// and queued fills own whole rows.
+inline int whole_step_room(const SolidOver8& target, int x) { return target.color >> 24 == 255 ? target.width - x : 0; }
+
 // One cluster of a row (a sparse row's, or a narrow, crowded or dense block's row whole): cells lo .. hi (relative to
 // x_base; acc is cell x_base) swept from `sum` (carried from the cluster before), one compositor call for its nonzero
 // pixels, then the stretch up to gap_end (the next cluster, or the row's end) as one span of the sum left past the
@@ -250,7 +255,8 @@ template <FillRule R, bool kAvx2>
     if (target) {
       auto* const px = reinterpret_cast<std::uint32_t*>(target->pixels + y * target->stride) + x_base + lo;
       const int visible = std::max(std::min(hi + 1, width - x_base) - lo, 0);
-      detail::blend_cells_avx2<R>(acc + lo, hi - lo + 1, visible, sum, px, target->color);
+      detail::blend_cells_avx2<R>(acc + lo, hi - lo + 1, visible, sum, px, target->color,
+                                  whole_step_room(*target, x_base + lo));
       if (gap_end > hi + 1) {
         const float c = coverage_of<R>(sum);
         if (c > 0) sink.span(y, x_base + hi + 1, x_base + gap_end, c);
@@ -331,7 +337,8 @@ template <FillRule R, bool kAvx2, class Cell>
   if constexpr (kAvx2 && std::is_same_v<Cell, std::int32_t>) {
     if (target) {
       auto* const px = reinterpret_cast<std::uint32_t*>(target->pixels + y * target->stride) + x_base + lo;
-      detail::blend_fixed_cells_avx2<R>(cells + lo, hi - lo + 1, visible, sum, px, target->color);
+      detail::blend_fixed_cells_avx2<R>(cells + lo, hi - lo + 1, visible, sum, px, target->color,
+                                        whole_step_room(*target, x_base + lo));
       blended = true;
     }
   }
