@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <climits>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -25,6 +26,7 @@ struct EdgeTableView {
   const std::vector<std::uint32_t>& order;
   const std::vector<std::uint32_t>& bucket_start;
   int y_min, y_max;
+  int x_end = INT_MAX;  // analytic: past the last column the edges reach (edge_columns), where that is known
 };
 
 /// The analytic row sweep's active edges as columns, one array per number, in active-list order: every row reads
@@ -213,7 +215,7 @@ struct QueuedFill {
   QueuedFill(const QueuedFill&) = delete;  // (a sink in sink_storage_ stays where it was made: entries never move)
   QueuedFill& operator=(const QueuedFill&) = delete;
   ~QueuedFill() { drop_sink(); }
-  EdgeTableView table() const { return {edges, order, bucket_start, y_min, y_max}; }
+  EdgeTableView table() const { return {edges, order, bucket_start, y_min, y_max, x_base + columns}; }
   std::size_t bytes() const;
   /// Keeps `owned` if given, else a copy of `s` (in the entry's own storage where it fits: no allocation); false for
   /// a sink that cannot be copied.

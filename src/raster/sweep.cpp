@@ -236,8 +236,9 @@ inline const SolidOver8* solid_target(const CoverageSink& sink, SolidOver8& pixe
 }
 
 // The pixels of the target's row from column x on that a run's partial blend step may read and write back unchanged
-// (blend_whole_step8): all of them for an opaque colour, none for a translucent one. The row is this thread's: bands
-// and queued fills own whole rows.
+// (blend_whole_step8): for an opaque colour those up to the target's width, which the sweeps narrow to the fill's
+// columns (so a fill never touches a pixel right of its edges), none for a translucent one. The row is this
+// thread's: bands and queued fills own whole rows.
 inline int whole_step_room(const SolidOver8& target, int x) { return target.color >> 24 == 255 ? target.width - x : 0; }
 
 // One cluster of a row (a sparse row's, or a narrow, crowded or dense block's row whole): cells lo .. hi (relative to
@@ -427,6 +428,7 @@ template <FillRule R, bool kAvx2>
   // longer one).
   SolidOver8 pixels;
   const SolidOver8* const target = kAvx2 ? solid_target(sink, pixels, width, y_to) : nullptr;
+  pixels.width = std::min(pixels.width, table.x_end);  // (whole_step_room: no pixel right of the fill's columns)
   // a.x[k]: where active edge k enters the current row (its x at max(y0, row top)). An edge that goes on below the
   // row leaves at x_at(bottom), which is the very number x_at(top) gives in the next row: it is kept instead of
   // computed twice. (Edges active from before y_from enter with x_at(y_from), the same number again.)
@@ -888,6 +890,7 @@ template <FillRule R, DenseRows kMode, bool kAvx2, class Cell>
   // and no loss on wide rows here (docs/performance.md).
   SolidOver8 pixels;
   const SolidOver8* const target = kAvx2 ? solid_target(sink, pixels, width, y_max) : nullptr;
+  pixels.width = std::min(pixels.width, x_base + columns);  // (whole_step_room: no pixel right of the fill's columns)
   for (int r = 0; kMode != DenseRows::Whole && r < y_max - y_min; ++r) {
     notes[kNotes * r] = columns;
     notes[kNotes * r + 1] = -1;
@@ -1281,8 +1284,10 @@ void detail::RasterizerImpl::sweep_analytic(FillRule rule, int width, bool fixed
   edge_columns(edges_, x_base, columns);
   if (sweep_dense(rule, width, x_base, columns, fixed_cells, sink)) return;
   bucket_edges(false);
+  EdgeTableView edge_table = table();
+  edge_table.x_end = x_base + columns;
   in_bands(band_count(sink), [&](int y0, int y1, BandScratch& s) {
-    sweep_analytic_band(table(), rule, width, y0, y1, fixed_cells, s, sink);
+    sweep_analytic_band(edge_table, rule, width, y0, y1, fixed_cells, s, sink);
   });
 }
 
