@@ -115,9 +115,10 @@ TEST(FixedCells, RowsOfManyEdgesTakeWideCellsWithinTheBound) {
   // wide cells, within kWideCellsError of the double cells and exactly 0 or 1 where the exact area is; the tips
   // (two edges a row) take the 32-bit cells.
   const int w = 200, h = 200;
-  const std::vector<std::vector<Polygon>> scenes{{star_polygon(40, 17, 100, 100, 90)},
-                                                 {star_polygon(301, 140, 101.3, 99.1, 95)},
-                                                 {star_polygon(97, 13, 90, 110, 80), star_polygon(60, 29, 120, 95, 70)}};
+  const std::vector<std::vector<Polygon>> scenes{
+      {star_polygon(40, 17, 100, 100, 90)},
+      {star_polygon(301, 140, 101.3, 99.1, 95)},
+      {star_polygon(97, 13, 90, 110, 80), star_polygon(60, 29, 120, 95, 70)}};
   double worst = 0;
   for (std::size_t it = 0; it < scenes.size(); ++it) {
     const std::vector<Polygon>& shapes = scenes[it];
@@ -178,7 +179,9 @@ TEST(FixedCells, WideCellsSweepTheSameBitsWithAndWithoutAvx2) {
     const CoverageGrid portable = row_sweep(shapes, rule, w, h, true);
     detail::portable_kernels_forced() = false;
     for (int y = 0; y < h; ++y) {
-      for (int x = 0; x < w; ++x) ASSERT_EQ(simd.at(x, y), portable.at(x, y)) << to_string(rule) << " " << x << "," << y;
+      for (int x = 0; x < w; ++x) {
+        ASSERT_EQ(simd.at(x, y), portable.at(x, y)) << to_string(rule) << " " << x << "," << y;
+      }
     }
   }
 }

@@ -334,7 +334,8 @@ template <FillRule R>
 }
 
 /// sweep_fixed_cells_scalar on wide cells, four a step (the same floats: integer sums are exact in any order):
-/// reads and zeroes cells up to three past n (which must be zero: a row's untouched cells) and writes coverage up to three past n.
+/// reads and zeroes cells up to three past n (which must be zero: a row's untouched cells) and writes coverage up to
+/// three past n.
 template <FillRule R>
 [[gnu::target("avx2")]] inline void sweep_wide_cells_avx2(std::int64_t* cells, float* cov, int n, std::int64_t& sum) {
   __m256i carry = _mm256_set1_epi64x(sum);

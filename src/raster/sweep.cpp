@@ -237,9 +237,11 @@ inline const SolidOver8* solid_target(const CoverageSink& sink, SolidOver8& pixe
 
 // The pixels of the target's row from column x on that a run's partial blend step may read and write back unchanged
 // (blend_whole_step8): for an opaque colour those up to the target's width, which the sweeps narrow to the fill's
-// columns (so a fill never touches a pixel right of its edges), none for a translucent one. The row is this
-// thread's: bands and queued fills own whole rows.
-inline int whole_step_room(const SolidOver8& target, int x) { return target.color >> 24 == 255 ? target.width - x : 0; }
+// columns (so a fill never touches a pixel past the cells its edges write), none for a translucent one. The row is
+// this thread's: bands and queued fills own whole rows.
+inline int whole_step_room(const SolidOver8& target, int x) {
+  return target.color >> 24 == 255 ? target.width - x : 0;
+}
 
 // One cluster of a row (a sparse row's, or a narrow, crowded or dense block's row whole): cells lo .. hi (relative to
 // x_base; acc is cell x_base) swept from `sum` (carried from the cluster before), one compositor call for its nonzero
