@@ -366,32 +366,31 @@ struct SplitLanes {
     _mm256_store_pd(xa, from_x);
     _mm256_store_pd(xb, to_x);
     _mm256_store_pd(h, height);
-    if constexpr (std::is_same_v<Cell, std::int64_t>) {
-      // As below, in 64-bit lanes: the four totals rounded, their differences, transposed to a piece per row.
+    if constexpr (kFixed) {
+      // The shares' running totals (accumulate_split_fixed's sums, in its order), rounded to the cells' units; each
+      // cell gets the difference of two, transposed from share c of the four lanes in row c to lane i's in row i.
       const __m256d c0 = p.add0, c1 = _mm256_add_pd(_mm256_add_pd(c0, p.add1), p.then1);
       const __m256d c2 = _mm256_add_pd(_mm256_add_pd(c1, p.add2), p.then2), c3 = _mm256_add_pd(c2, p.add3);
-      const __m256i q0 = wide_units(c0), q1 = wide_units(c1), q2 = wide_units(c2), q3 = wide_units(c3);
-      const __m256i s0 = q0, s1 = _mm256_sub_epi64(q1, q0), s2 = _mm256_sub_epi64(q2, q1);
-      const __m256i s3 = _mm256_sub_epi64(q3, q2);
-      const __m256i t0 = _mm256_unpacklo_epi64(s0, s1), t1 = _mm256_unpacklo_epi64(s2, s3);  // lanes 0, 2
-      const __m256i t2 = _mm256_unpackhi_epi64(s0, s1), t3 = _mm256_unpackhi_epi64(s2, s3);  // lanes 1, 3
-      _mm256_store_si256(reinterpret_cast<__m256i*>(fixed[0]), _mm256_permute2x128_si256(t0, t1, 0x20));
-      _mm256_store_si256(reinterpret_cast<__m256i*>(fixed[1]), _mm256_permute2x128_si256(t2, t3, 0x20));
-      _mm256_store_si256(reinterpret_cast<__m256i*>(fixed[2]), _mm256_permute2x128_si256(t0, t1, 0x31));
-      _mm256_store_si256(reinterpret_cast<__m256i*>(fixed[3]), _mm256_permute2x128_si256(t2, t3, 0x31));
-    } else if constexpr (kFixed) {
-      // The shares' running totals rounded (accumulate_split_fixed's sums, in its order), then their differences.
-      const __m256d c0 = p.add0, c1 = _mm256_add_pd(_mm256_add_pd(c0, p.add1), p.then1);
-      const __m256d c2 = _mm256_add_pd(_mm256_add_pd(c1, p.add2), p.then2), c3 = _mm256_add_pd(c2, p.add3);
-      const __m128i q0 = fixed_units(c0), q1 = fixed_units(c1), q2 = fixed_units(c2), q3 = fixed_units(c3);
-      // Share c of the four lanes in row c, transposed to lane i's four shares in row i.
-      const __m128i s0 = q0, s1 = _mm_sub_epi32(q1, q0), s2 = _mm_sub_epi32(q2, q1), s3 = _mm_sub_epi32(q3, q2);
-      const __m128i t0 = _mm_unpacklo_epi32(s0, s1), t1 = _mm_unpacklo_epi32(s2, s3);
-      const __m128i t2 = _mm_unpackhi_epi32(s0, s1), t3 = _mm_unpackhi_epi32(s2, s3);
-      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[0]), _mm_unpacklo_epi64(t0, t1));
-      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[1]), _mm_unpackhi_epi64(t0, t1));
-      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[2]), _mm_unpacklo_epi64(t2, t3));
-      _mm_store_si128(reinterpret_cast<__m128i*>(fixed[3]), _mm_unpackhi_epi64(t2, t3));
+      if constexpr (std::is_same_v<Cell, std::int64_t>) {
+        const __m256i q0 = wide_units(c0), q1 = wide_units(c1), q2 = wide_units(c2), q3 = wide_units(c3);
+        const __m256i s0 = q0, s1 = _mm256_sub_epi64(q1, q0), s2 = _mm256_sub_epi64(q2, q1);
+        const __m256i s3 = _mm256_sub_epi64(q3, q2);
+        const __m256i t0 = _mm256_unpacklo_epi64(s0, s1), t1 = _mm256_unpacklo_epi64(s2, s3);  // lanes 0, 2
+        const __m256i t2 = _mm256_unpackhi_epi64(s0, s1), t3 = _mm256_unpackhi_epi64(s2, s3);  // lanes 1, 3
+        _mm256_store_si256(reinterpret_cast<__m256i*>(fixed[0]), _mm256_permute2x128_si256(t0, t1, 0x20));
+        _mm256_store_si256(reinterpret_cast<__m256i*>(fixed[1]), _mm256_permute2x128_si256(t2, t3, 0x20));
+        _mm256_store_si256(reinterpret_cast<__m256i*>(fixed[2]), _mm256_permute2x128_si256(t0, t1, 0x31));
+        _mm256_store_si256(reinterpret_cast<__m256i*>(fixed[3]), _mm256_permute2x128_si256(t2, t3, 0x31));
+      } else {
+        const __m128i q0 = fixed_units(c0), q1 = fixed_units(c1), q2 = fixed_units(c2), q3 = fixed_units(c3);
+        const __m128i s0 = q0, s1 = _mm_sub_epi32(q1, q0), s2 = _mm_sub_epi32(q2, q1), s3 = _mm_sub_epi32(q3, q2);
+        const __m128i t0 = _mm_unpacklo_epi32(s0, s1), t1 = _mm_unpacklo_epi32(s2, s3);
+        const __m128i t2 = _mm_unpackhi_epi32(s0, s1), t3 = _mm_unpackhi_epi32(s2, s3);
+        _mm_store_si128(reinterpret_cast<__m128i*>(fixed[0]), _mm_unpacklo_epi64(t0, t1));
+        _mm_store_si128(reinterpret_cast<__m128i*>(fixed[1]), _mm_unpackhi_epi64(t0, t1));
+        _mm_store_si128(reinterpret_cast<__m128i*>(fixed[2]), _mm_unpacklo_epi64(t2, t3));
+        _mm_store_si128(reinterpret_cast<__m128i*>(fixed[3]), _mm_unpackhi_epi64(t2, t3));
+      }
     } else {
       _mm256_store_pd(add0, p.add0);
       _mm256_store_pd(add1, p.add1);
